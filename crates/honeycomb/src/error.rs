@@ -1,0 +1,31 @@
+//! The library's one error type: every message names the problem and where it is.
+
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file that cannot be read as the format it claims (line is 1-based; 0 = whole file).
+    #[error("{path}:{line}: {message}")]
+    Parse {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+    /// A mesh that parses but is not acceptable (non-manifold, valence, degenerate, ...).
+    #[error("invalid mesh: {0}")]
+    Mesh(String),
+    /// A parameter outside its meaningful range.
+    #[error("invalid parameter: {0}")]
+    Parameter(String),
+    /// The optimization could not proceed (e.g. a singular system).
+    #[error("solver: {0}")]
+    Solver(String),
+}
+
+pub type Result<T> = std::result::Result<T, Error>;

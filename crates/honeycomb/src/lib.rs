@@ -1,0 +1,16 @@
+//! Freeform honeycomb structures (Jiang, Tang, Wallner, Pottmann et al.): hexagonal meshes on a
+//! design surface whose walls are planar and meet at exactly 120 degrees at every node.
+//!
+//! The library is the product; the `honeycomb` binary is a thin front over it.
+
+pub mod constraints;
+pub mod error;
+pub mod generate;
+pub mod geometry;
+pub mod mesh;
+pub mod solve;
+pub mod structure;
+pub mod surface;
+
+pub use error::{Error, Result};
+pub use geometry::Vec3;
