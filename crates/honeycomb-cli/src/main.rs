@@ -1,1 +1,46 @@
-fn main() {}
+//! `honeycomb`: the command-line front of the honeycomb library.
+
+mod bench;
+mod demo;
+mod optimize;
+mod progress;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "honeycomb",
+    version,
+    about = "Freeform honeycomb structures: hexagonal support structures whose walls meet at 120 degrees"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Optimize a hexagonal base mesh into a honeycomb and write a structure directory.
+    Optimize(optimize::Args),
+    /// Build a hex mesh on a built-in surface, optimize it and write a structure directory.
+    Demo(demo::Args),
+    /// Time the optimizer on generated hex meshes of growing size (Figure 16 columns).
+    Bench(bench::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Optimize(args) => optimize::run(args),
+        Command::Demo(args) => demo::run(args),
+        Command::Bench(args) => bench::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

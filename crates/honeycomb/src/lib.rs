@@ -5,9 +5,12 @@
 
 pub mod constraints;
 pub mod error;
+pub mod export;
 pub mod generate;
 pub mod geometry;
 pub mod mesh;
+pub mod optimize;
+pub mod report;
 pub mod solve;
 pub mod structure;
 pub mod surface;

@@ -1,1 +1,21 @@
-//! TODO
+//! The constraint families of a honeycomb (DESIGN.md section 2), one file each. Each states its
+//! rows, residuals and Jacobian; the solver sees only the `Constraint` trait.
+
+mod boundary_curve;
+mod closeness;
+mod layout;
+mod node_angle;
+mod normalization;
+mod opposite_walls;
+mod wall_consistency;
+
+pub use boundary_curve::BoundaryCurve;
+pub use closeness::Closeness;
+pub use layout::Layout;
+pub use node_angle::{Node2, Node3};
+pub use normalization::Normalization;
+pub use opposite_walls::OppositeWalls;
+pub use wall_consistency::WallConsistency;
+
+#[cfg(test)]
+mod jacobian_tests;

@@ -47,9 +47,7 @@ impl Connectivity {
                     )));
                 }
                 if f[..k].contains(&v) {
-                    return Err(Error::Mesh(format!(
-                        "face {fi} visits vertex {v} twice"
-                    )));
+                    return Err(Error::Mesh(format!("face {fi} visits vertex {v} twice")));
                 }
             }
             let mut fe = Vec::with_capacity(f.len());

@@ -1,1 +1,10 @@
-//! TODO
+//! Guided projection (Tang et al. 2014): a regularized Gauss-Newton method for systems of
+//! linear and quadratic constraints, on a sparsity pattern that is fixed for the whole solve.
+
+mod cholesky;
+mod constraint;
+mod normal_matrix;
+mod solver;
+
+pub use constraint::{jacobian_fd_error, Constraint, Role};
+pub use solver::{FamilyResidual, GuidedProjection, IterationInfo, SolveReport, SolverOptions};

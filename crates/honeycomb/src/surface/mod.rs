@@ -1,1 +1,207 @@
-//! TODO
+//! The reference surface S that a honeycomb is fitted to: a consistently oriented triangle
+//! mesh with vertex normals, fast exact closest-point queries and its boundary polylines.
+
+mod boundary;
+mod bvh;
+mod closest;
+mod normals;
+mod orient;
+#[cfg(test)]
+mod tests;
+
+pub use boundary::BoundaryPoint;
+pub use bvh::Bvh;
+pub use closest::{closest_point_on_segment, closest_point_on_triangle};
+
+use crate::error::{Error, Result};
+use crate::geometry::Vec3;
+use crate::mesh::PolyMesh;
+use boundary::Boundary;
+
+/// The point of S closest to a query point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClosestPoint {
+    pub point: Vec3,
+    /// Unit normal at `point`: the vertex normals blended with barycentric weights, on the
+    /// side of the (consistently oriented) face normals.
+    pub normal: Vec3,
+    /// Distance from the query point to `point`.
+    pub distance: f64,
+    /// Index of the triangle containing `point` (see [`Surface::triangles`]).
+    pub triangle: usize,
+}
+
+/// A triangulated, consistently oriented reference surface with its acceleration structures.
+#[derive(Clone, Debug)]
+pub struct Surface {
+    vertices: Vec<Vec3>,
+    /// Triangles, all oriented like their neighbours, in BVH order.
+    triangles: Vec<[usize; 3]>,
+    /// The corner positions of each triangle, stored next to each other for fast queries.
+    corners: Vec<[Vec3; 3]>,
+    /// Unit normal per triangle (zero-area triangles borrow their vertices' normals).
+    face_normals: Vec<Vec3>,
+    /// Unit angle-weighted normal per vertex (zero for vertices without proper faces).
+    vertex_normals: Vec<Vec3>,
+    bvh: Bvh,
+    boundary: Boundary,
+}
+
+impl Surface {
+    /// Triangulates polygons (fan), orients triangles consistently (flips spread over shared
+    /// edges; each connected piece keeps its majority orientation), computes normals, boundary
+    /// loops and the BVH.
+    ///
+    /// Fails (`Error::Mesh`) on a mesh without faces, faces with fewer than 3 vertices,
+    /// out-of-range indices, non-finite vertices, edges shared by more than two faces and
+    /// non-orientable surfaces.
+    pub fn from_mesh(mesh: &PolyMesh) -> Result<Surface> {
+        validate(mesh)?;
+        let mut triangles = mesh.triangulated();
+        let boundary_edges = orient::orient(&mut triangles)?;
+
+        let vertices = mesh.vertices.clone();
+        let bvh = Bvh::build(&mut triangles, |tri| {
+            let [a, b, c] = tri.map(|v| vertices[v]);
+            (a.min(b).min(c), a.max(b).max(c))
+        });
+        let corners = triangles.iter().map(|t| t.map(|v| vertices[v])).collect();
+        let mut face_normals = normals::face_normals(&vertices, &triangles);
+        let vertex_normals = normals::vertex_normals(&vertices, &triangles, &face_normals);
+        normals::fill_degenerate(&mut face_normals, &triangles, &vertex_normals);
+        let boundary = Boundary::new(&vertices, &boundary_edges);
+        Ok(Surface {
+            vertices,
+            triangles,
+            corners,
+            face_normals,
+            vertex_normals,
+            bvh,
+            boundary,
+        })
+    }
+
+    /// The exact closest point of S to `p`.
+    pub fn closest_point(&self, p: Vec3) -> ClosestPoint {
+        let eval = |t: usize| {
+            let [a, b, c] = self.corners[t];
+            let (q, w) = closest_point_on_triangle(p, a, b, c);
+            ((p - q).norm_squared(), (t, q, w))
+        };
+        // Only a non-finite query escapes every box; answer it (with NaNs) from triangle 0.
+        let (d2, (triangle, point, weights)) =
+            self.bvh.nearest(p, &eval).unwrap_or_else(|| eval(0));
+        ClosestPoint {
+            point,
+            normal: self.interpolated_normal(triangle, weights),
+            distance: d2.sqrt(),
+            triangle,
+        }
+    }
+
+    /// [`Surface::closest_point`] for each point.
+    pub fn closest_points(&self, ps: &[Vec3]) -> Vec<ClosestPoint> {
+        ps.iter().map(|&p| self.closest_point(p)).collect()
+    }
+
+    /// The closest point on the boundary of S; `None` if S has no boundary.
+    pub fn closest_boundary_point(&self, p: Vec3) -> Option<BoundaryPoint> {
+        self.boundary.closest(p)
+    }
+
+    /// The surface normal at the point of S closest to `p`.
+    pub fn normal_at(&self, p: Vec3) -> Vec3 {
+        self.closest_point(p).normal
+    }
+
+    pub fn has_boundary(&self) -> bool {
+        !self.boundary.loops().is_empty()
+    }
+
+    /// Boundary loops as closed polylines (the last point connects to the first), running with
+    /// the surface on their left seen from the normal side.
+    pub fn boundary_loops(&self) -> &[Vec<Vec3>] {
+        self.boundary.loops()
+    }
+
+    pub fn num_triangles(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The consistently oriented triangles, as indices into [`Surface::vertices`]. Their order
+    /// is that of the BVH (spatially coherent), not that of the input faces.
+    pub fn triangles(&self) -> &[[usize; 3]] {
+        &self.triangles
+    }
+
+    /// The vertices of the input mesh.
+    pub fn vertices(&self) -> &[Vec3] {
+        &self.vertices
+    }
+
+    /// Unit angle-weighted vertex normals (zero for vertices outside any proper triangle).
+    pub fn vertex_normals(&self) -> &[Vec3] {
+        &self.vertex_normals
+    }
+
+    /// The axis-aligned bounding box `(min, max)` of the triangles.
+    pub fn bbox(&self) -> (Vec3, Vec3) {
+        self.bvh
+            .bounds()
+            .expect("a surface has at least one triangle")
+    }
+
+    /// The oriented triangles as a polygon mesh over the input vertices.
+    pub fn mesh_for_export(&self) -> PolyMesh {
+        PolyMesh::new(
+            self.vertices.clone(),
+            self.triangles.iter().map(|t| t.to_vec()).collect(),
+        )
+    }
+
+    /// Blend of the corner normals with barycentric weights `w`. Vertex normals average all
+    /// faces around a corner, so at a sharp fold the blend can tip past this face's tangent
+    /// plane (or cancel out); then the face normal is the honest answer.
+    fn interpolated_normal(&self, triangle: usize, w: [f64; 3]) -> Vec3 {
+        let [a, b, c] = self.triangles[triangle];
+        let face = self.face_normals[triangle];
+        let n = (self.vertex_normals[a] * w[0]
+            + self.vertex_normals[b] * w[1]
+            + self.vertex_normals[c] * w[2])
+            .normalized();
+        if n.dot(face) > 0.0 {
+            n
+        } else {
+            face
+        }
+    }
+}
+
+/// Rejects what the triangulation and orientation cannot work with.
+fn validate(mesh: &PolyMesh) -> Result<()> {
+    if mesh.faces.is_empty() {
+        return Err(Error::Mesh("the surface has no faces".into()));
+    }
+    let nv = mesh.vertices.len();
+    for (fi, f) in mesh.faces.iter().enumerate() {
+        if f.len() < 3 {
+            return Err(Error::Mesh(format!(
+                "face {fi} has {} vertices; a face needs at least 3",
+                f.len()
+            )));
+        }
+        for &v in f {
+            if v >= nv {
+                return Err(Error::Mesh(format!(
+                    "face {fi} refers to vertex {v}, but the mesh has {nv} vertices"
+                )));
+            }
+            if !mesh.vertices[v].is_finite() {
+                return Err(Error::Mesh(format!(
+                    "vertex {v} (of face {fi}) has a non-finite coordinate"
+                )));
+            }
+        }
+    }
+    Ok(())
+}

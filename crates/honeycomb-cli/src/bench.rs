@@ -1,0 +1,108 @@
+//! `honeycomb bench`: the optimizer on generated hex meshes of growing size, in the columns of
+//! the paper's Figure 16 plus time per iteration, the share of numeric factorization and the
+//! process's peak memory.
+
+use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::optimize::{optimize, OptimizeOptions};
+use honeycomb::report::Report;
+use honeycomb::solve::SolverOptions;
+use honeycomb::structure::measure;
+use honeycomb::surface::Surface;
+use honeycomb::{Error, Result};
+use std::time::Instant;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Approximate vertex counts, comma separated (run in this order; keep them ascending so
+    /// that the process's peak memory is the peak of each size).
+    #[arg(long, value_delimiter = ',', default_values_t = [1500, 8500, 35000, 140000])]
+    pub sizes: Vec<usize>,
+    /// Iterations per run (all are done: the convergence test is off).
+    #[arg(long, default_value_t = 5)]
+    pub iterations: usize,
+    /// Built-in surface: saddle, dome or cylinder.
+    #[arg(long, default_value = "dome")]
+    pub shape: Shape,
+    /// Print one JSON object per size instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    if args.iterations == 0 || args.iterations > 1000 {
+        return Err(Error::Parameter(format!(
+            "--iterations {}: expected 1 to 1000",
+            args.iterations
+        )));
+    }
+    if let Some(&bad) = args.sizes.iter().find(|&&s| !(50..=2_000_000).contains(&s)) {
+        return Err(Error::Parameter(format!(
+            "--sizes {bad}: expected 50 to 2000000 vertices"
+        )));
+    }
+    if !args.json {
+        println!(
+            "{}  {:>8} {:>8} {:>8} {:>8} {:>8}",
+            Report::FIGURE16_HEADER,
+            "ms/it",
+            "factor%",
+            "symb(s)",
+            "nnz(L)M",
+            "peakMiB"
+        );
+    }
+    for &size in &args.sizes {
+        let (base, surface) = lifted_hex_patch(args.shape, size);
+        let options = OptimizeOptions {
+            solver: SolverOptions {
+                max_iterations: args.iterations,
+                tolerance: 0.0,
+                ..SolverOptions::default()
+            },
+            ..OptimizeOptions::default()
+        };
+        let start = Instant::now();
+        let optimized = optimize(&base, &surface, &options, &mut |_| {})?;
+        let seconds = start.elapsed().as_secs_f64();
+        let measures = measure(&optimized.honeycomb, &Surface::from_mesh(&surface)?);
+        let report = Report::new(&optimized, &measures, &options.weights, seconds);
+        let s = &optimized.solve;
+        let iter_seconds = s.seconds_assembly + s.seconds_factorization + s.seconds_other;
+        let per_iteration_ms = 1e3 * iter_seconds / s.iterations.max(1) as f64;
+        let factor_share = 100.0 * s.seconds_factorization / iter_seconds.max(1e-12);
+        let peak_mib = peak_memory_kib().map_or(f64::NAN, |k| k as f64 / 1024.0);
+        if args.json {
+            println!(
+                "{}",
+                serde_json::json!({
+                    "vertices": report.vertices, "edges": report.edges,
+                    "iterations": report.iterations, "omega_max_deg": report.omega_max_deg,
+                    "omega_avg_deg": report.omega_avg_deg, "delta_max": report.delta_max,
+                    "delta_avg": report.delta_avg, "closeness_max": report.closeness_max,
+                    "seconds": seconds, "ms_per_iteration": per_iteration_ms,
+                    "factorization_share": factor_share / 100.0,
+                    "seconds_symbolic": s.seconds_symbolic, "factor_nnz": s.factor_nnz,
+                    "factorizations": s.factorizations, "peak_mib": peak_mib,
+                })
+            );
+        } else {
+            println!(
+                "{}  {:>8.1} {:>7.0}% {:>8.3} {:>8.2} {:>8.0}",
+                report.figure16_row(),
+                per_iteration_ms,
+                factor_share,
+                s.seconds_symbolic,
+                s.factor_nnz as f64 / 1e6,
+                peak_mib
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The process's peak resident memory (Linux `VmHWM`), in KiB.
+fn peak_memory_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}

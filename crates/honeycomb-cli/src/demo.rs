@@ -1,0 +1,47 @@
+//! `honeycomb demo`: the first success of a new user, no input file needed.
+
+use crate::optimize::{optimize_and_write, SolveArgs};
+use honeycomb::export::write_json;
+use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::mesh::write_mesh;
+use honeycomb::{Error, Result};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Output directory.
+    #[arg(short, long, default_value = "honeycomb-demo")]
+    pub output: PathBuf,
+    /// Built-in design surface: saddle, dome or cylinder.
+    #[arg(long, default_value = "saddle")]
+    pub shape: Shape,
+    /// Approximate number of vertices of the hexagonal base mesh.
+    #[arg(long, default_value_t = 1500)]
+    pub vertices: usize,
+    #[command(flatten)]
+    pub opts: SolveArgs,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    if args.opts.surface.is_some() {
+        return Err(Error::Parameter(
+            "demo builds its own surface; use `honeycomb optimize BASE --surface S` for a file"
+                .into(),
+        ));
+    }
+    if !(50..=2_000_000).contains(&args.vertices) {
+        return Err(Error::Parameter(format!(
+            "--vertices {}: expected 50 to 2000000",
+            args.vertices
+        )));
+    }
+    let (base, surface) = lifted_hex_patch(args.shape, args.vertices);
+    optimize_and_write(&base, &surface, &args.opts, &args.output)?;
+    // The inputs too, so the result can be reproduced with `honeycomb optimize`.
+    write_mesh(&args.output.join("input_base.obj"), &base)?;
+    write_mesh(&args.output.join("surface.obj"), &surface)?;
+    write_json(
+        &args.output.join("demo.json"),
+        &serde_json::json!({ "shape": format!("{:?}", args.shape).to_lowercase(), "vertices": args.vertices }),
+    )
+}

@@ -1,0 +1,177 @@
+//! `honeycomb optimize BASE [--surface S] ... -o DIR`
+
+use crate::progress::{IterationBar, Output};
+use honeycomb::mesh::{read_mesh, PolyMesh};
+use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
+use honeycomb::report::Report;
+use honeycomb::solve::SolverOptions;
+use honeycomb::structure::measure;
+use honeycomb::surface::Surface;
+use honeycomb::{Error, Result};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Hexagonal (trivalent) base mesh: OBJ, OFF or PLY.
+    pub base: PathBuf,
+    #[command(flatten)]
+    pub opts: SolveArgs,
+    /// Output directory.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// Options shared by every command that optimizes.
+#[derive(clap::Args, Clone)]
+pub struct SolveArgs {
+    /// Reference surface S (triangle/quad/polygon mesh); default: the base mesh itself.
+    #[arg(long)]
+    pub surface: Option<PathBuf>,
+    /// Maximum number of guided-projection iterations.
+    #[arg(long, default_value_t = 10)]
+    pub iterations: usize,
+    /// Distance between M and M' along the node axes, in model units (default 0.3 mean edge lengths).
+    #[arg(long)]
+    pub thickness: Option<f64>,
+    /// Weight of the 120-degree node condition.
+    #[arg(long, default_value_t = Weights::default().angle)]
+    pub w_angle: f64,
+    /// Weight of wall consistency (the wall contains its edge).
+    #[arg(long, default_value_t = Weights::default().consistency)]
+    pub w_cons: f64,
+    /// Weight of the unit-normal condition.
+    #[arg(long, default_value_t = Weights::default().normalization)]
+    pub w_norm: f64,
+    /// Weight of closeness to the reference surface.
+    #[arg(long, default_value_t = Weights::default().closeness)]
+    pub w_close: f64,
+    /// Weight of keeping boundary vertices on the surface's boundary.
+    #[arg(long, default_value_t = Weights::default().boundary)]
+    pub w_boundary: f64,
+    /// Weight of opposite-wall fairness in hexagons (fades with the regularization).
+    #[arg(long, default_value_t = Weights::default().fairness)]
+    pub w_fair: f64,
+    /// Initial regularization eps (normalized frame); it shrinks as steps succeed.
+    #[arg(long, default_value_t = SolverOptions::default().eps)]
+    pub eps: f64,
+    /// No progress output.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Print the report as JSON on stdout instead of a table row.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl SolveArgs {
+    pub fn output(&self) -> Output {
+        Output::from_flags(self.quiet, self.json)
+    }
+
+    pub fn options(&self) -> Result<OptimizeOptions> {
+        if self.iterations == 0 || self.iterations > 10_000 {
+            return Err(Error::Parameter(format!(
+                "--iterations {}: expected 1 to 10000",
+                self.iterations
+            )));
+        }
+        if let Some(t) = self.thickness {
+            if !t.is_finite() || t <= 0.0 {
+                return Err(Error::Parameter(format!(
+                    "--thickness {t}: expected a positive length in model units"
+                )));
+            }
+        }
+        if !self.eps.is_finite() || self.eps <= 0.0 || self.eps > 1e3 {
+            return Err(Error::Parameter(format!(
+                "--eps {}: expected a positive number, typically 1e-3",
+                self.eps
+            )));
+        }
+        let weights = Weights {
+            angle: self.w_angle,
+            consistency: self.w_cons,
+            normalization: self.w_norm,
+            closeness: self.w_close,
+            boundary: self.w_boundary,
+            fairness: self.w_fair,
+        };
+        weights.validate()?;
+        Ok(OptimizeOptions {
+            weights,
+            solver: SolverOptions {
+                max_iterations: self.iterations,
+                eps: self.eps,
+                ..SolverOptions::default()
+            },
+            thickness: self.thickness,
+        })
+    }
+}
+
+/// Reads a mesh, passing the reader's warnings to stderr.
+pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
+    let loaded = read_mesh(path)?;
+    if output != Output::Json || !loaded.warnings.is_empty() {
+        for w in &loaded.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    Ok(loaded.mesh)
+}
+
+/// Optimizes, measures, writes the structure directory and prints the result.
+pub fn optimize_and_write(
+    base: &PolyMesh,
+    surface: &PolyMesh,
+    args: &SolveArgs,
+    dir: &Path,
+) -> Result<Report> {
+    let options = args.options()?;
+    let output = args.output();
+    let bar = IterationBar::new(output, options.solver.max_iterations);
+    let start = Instant::now();
+    let result = optimize(base, surface, &options, &mut |info| bar.update(info));
+    bar.finish();
+    let optimized = result?;
+    let seconds = start.elapsed().as_secs_f64();
+    let model_surface = Surface::from_mesh(surface)?;
+    let measures = measure(&optimized.honeycomb, &model_surface);
+    let report = Report::new(&optimized, &measures, &options.weights, seconds);
+    honeycomb::export::write_structure(dir, &optimized.honeycomb, &report)?;
+    match output {
+        Output::Json => println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| Error::Parameter(e.to_string()))?
+        ),
+        Output::Human => {
+            println!("{}", Report::FIGURE16_HEADER);
+            println!("{}", report.figure16_row());
+            if !report.converged {
+                eprintln!(
+                    "note: not converged to tolerance in {} iterations (largest residual {:.1e}); \
+                     more --iterations may help",
+                    report.iterations,
+                    report
+                        .residuals
+                        .iter()
+                        .map(|r| r.max_abs)
+                        .fold(0.0, f64::max)
+                );
+            }
+            println!("wrote {}", dir.display());
+        }
+        Output::Quiet => {}
+    }
+    Ok(report)
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let output = args.opts.output();
+    let base = load(&args.base, output)?;
+    let surface = match &args.opts.surface {
+        Some(path) => load(path, output)?,
+        None => base.clone(),
+    };
+    optimize_and_write(&base, &surface, &args.opts, &args.output).map(|_| ())
+}

@@ -1,0 +1,57 @@
+//! How a long run talks to the terminal: a progress bar, nothing (`--quiet`), or JSON on stdout.
+
+use honeycomb::solve::IterationInfo;
+use indicatif::{ProgressBar, ProgressStyle};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Output {
+    Human,
+    Quiet,
+    Json,
+}
+
+impl Output {
+    pub fn from_flags(quiet: bool, json: bool) -> Output {
+        if json {
+            Output::Json
+        } else if quiet {
+            Output::Quiet
+        } else {
+            Output::Human
+        }
+    }
+}
+
+/// A bar over the solver's iterations (drawn on stderr, hidden when not a terminal).
+pub struct IterationBar {
+    bar: Option<ProgressBar>,
+}
+
+impl IterationBar {
+    pub fn new(output: Output, iterations: usize) -> IterationBar {
+        let bar = (output == Output::Human).then(|| {
+            let bar = ProgressBar::new(iterations as u64);
+            bar.set_style(
+                ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {msg}")
+                    .expect("static template")
+                    .progress_chars("=> "),
+            );
+            bar.set_prefix("optimizing");
+            bar
+        });
+        IterationBar { bar }
+    }
+
+    pub fn update(&self, info: &IterationInfo) {
+        if let Some(bar) = &self.bar {
+            bar.set_position(info.iteration as u64);
+            bar.set_message(format!("residual {:.1e}", info.max_residual));
+        }
+    }
+
+    pub fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}

@@ -1,0 +1,90 @@
+//! Every family's analytic Jacobian against central finite differences, at a perturbed (not
+//! converged) iterate so that no term vanishes by accident.
+
+use super::*;
+use crate::generate::{lifted_hex_patch, Shape};
+use crate::mesh::Connectivity;
+use crate::optimize::{families, initial_normals, Frame, Weights};
+use crate::solve::{jacobian_fd_error, Constraint};
+use crate::surface::Surface;
+
+/// A deterministic pseudo-random perturbation in [-1, 1].
+fn jitter(i: usize) -> f64 {
+    let h = (i as u64)
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    ((h >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+}
+
+#[test]
+fn every_family_matches_finite_differences() {
+    let (base, surface) = lifted_hex_patch(Shape::Saddle, 200);
+    let frame = Frame::of(&base);
+    let mesh = frame.to_normalized(&base);
+    let surface = Surface::from_mesh(&frame.to_normalized(&surface)).unwrap();
+    let conn = Connectivity::build(&mesh).unwrap();
+    let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+    let normals = initial_normals(&mesh, &conn, &surface);
+    let mut x = layout.pack(&mesh.vertices, &normals);
+    for (i, xi) in x.iter_mut().enumerate() {
+        *xi += 0.05 * jitter(i);
+    }
+    let mut fams = families(&mesh, &conn, &surface, &Weights::default());
+    let names: Vec<String> = fams.iter().map(|c| c.name().to_string()).collect();
+    for expected in [
+        "normalization",
+        "wall_consistency",
+        "node_120_valence3",
+        "node_120_valence2",
+        "closeness",
+        "fairness_opposite_walls",
+    ] {
+        assert!(
+            names.iter().any(|n| n == expected),
+            "family {expected} missing: {names:?}"
+        );
+    }
+    for c in &mut fams {
+        c.refresh(&x);
+        let err = jacobian_fd_error(c.as_ref(), &x, 1e-6);
+        assert!(
+            err < 1e-7,
+            "{}: Jacobian deviates from finite differences by {err}",
+            c.name()
+        );
+    }
+}
+
+#[test]
+fn boundary_curve_matches_finite_differences() {
+    // S is the base mesh itself, so every boundary vertex starts on S's boundary.
+    let (base, _) = lifted_hex_patch(Shape::Dome, 200);
+    let surface = Surface::from_mesh(&base).unwrap();
+    let conn = Connectivity::build(&base).unwrap();
+    let layout = Layout::new(base.vertices.len(), conn.num_edges());
+    let vertices = crate::optimize::boundary_vertices_on_surface_boundary(&base, &conn, &surface);
+    assert!(
+        vertices.len() > 20,
+        "only {} boundary vertices on S's boundary",
+        vertices.len()
+    );
+    let mut c = BoundaryCurve::new(layout, &surface, 1.0, vertices);
+    let normals = initial_normals(&base, &conn, &surface);
+    let mut x = layout.pack(&base.vertices, &normals);
+    for (i, xi) in x.iter_mut().enumerate() {
+        *xi += 0.02 * jitter(i + 7);
+    }
+    c.refresh(&x);
+    let err = jacobian_fd_error(&c, &x, 1e-6);
+    assert!(err < 1e-7, "boundary_curve: {err}");
+    // The residual is the distance to the tangent line: it is zero on the boundary itself.
+    let mut res = vec![0.0; c.num_rows()];
+    let mut jac = vec![0.0; c.num_rows() * 3];
+    let x0 = layout.pack(&base.vertices, &normals);
+    c.refresh(&x0);
+    c.evaluate(&x0, &mut res, &mut jac);
+    assert!(
+        res.iter().all(|r| r.abs() < 1e-9),
+        "boundary vertices should have zero residual"
+    );
+}

@@ -1,0 +1,310 @@
+//! Acceptance checks for input meshes. Each failure is one [`Error::Mesh`] saying what is wrong,
+//! where, and, when there is an obvious one, how to fix it.
+
+use super::{Connectivity, PolyMesh};
+use crate::error::{Error, Result};
+
+/// How many offending vertices a message lists before summarising the rest.
+const LISTED: usize = 5;
+
+/// Accepts a design surface: any non-empty manifold polygon mesh with finite coordinates,
+/// no isolated vertices and no zero-length edges.
+pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
+    if mesh.vertices.is_empty() || mesh.faces.is_empty() {
+        return Err(Error::Mesh(format!(
+            "empty mesh ({} vertices, {} faces)",
+            mesh.vertices.len(),
+            mesh.faces.len()
+        )));
+    }
+    if let Some((v, p)) = mesh
+        .vertices
+        .iter()
+        .enumerate()
+        .find(|(_, p)| !p.is_finite())
+    {
+        return Err(Error::Mesh(format!(
+            "vertex {v} has a non-finite coordinate: ({}, {}, {})",
+            p.x, p.y, p.z
+        )));
+    }
+    let conn = Connectivity::build(mesh)?;
+    let isolated: Vec<usize> = (0..mesh.vertices.len())
+        .filter(|&v| conn.valence(v) == 0)
+        .collect();
+    if !isolated.is_empty() {
+        return Err(Error::Mesh(format!(
+            "{} (used by no face): {}; remove {}",
+            match isolated.len() {
+                1 => "1 isolated vertex".to_string(),
+                n => format!("{n} isolated vertices"),
+            },
+            describe(mesh, &conn, &isolated, false),
+            if isolated.len() == 1 { "it" } else { "them" }
+        )));
+    }
+    check_edge_lengths(mesh, &conn)?;
+    Ok(conn)
+}
+
+/// Accepts a honeycomb base mesh: a valid surface mesh whose vertices all have valence 3
+/// (2 on the boundary).
+pub fn validate_base_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
+    let conn = validate_surface_mesh(mesh)?;
+    // Every vertex lies in a face of 3 or more vertices, so valence >= 2 already holds.
+    let high: Vec<usize> = (0..mesh.vertices.len())
+        .filter(|&v| conn.valence(v) > 3)
+        .collect();
+    if !high.is_empty() {
+        return Err(Error::Mesh(format!(
+            "{} valence > 3 (a honeycomb base mesh must be trivalent): {}; split {} into \
+             valence-3 vertices",
+            match high.len() {
+                1 => "1 vertex has".to_string(),
+                n => format!("{n} vertices have"),
+            },
+            describe(mesh, &conn, &high, true),
+            if high.len() == 1 { "it" } else { "them" }
+        )));
+    }
+    Ok(conn)
+}
+
+/// Edges much shorter than the mesh size are coincident vertices, which leave wall directions
+/// undefined.
+fn check_edge_lengths(mesh: &PolyMesh, conn: &Connectivity) -> Result<()> {
+    let first = mesh.vertices[0];
+    let (lo, hi) = mesh
+        .vertices
+        .iter()
+        .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let tolerance = 1e-12 * (hi - lo).norm();
+    for &[a, b] in &conn.edges {
+        let (pa, pb) = (mesh.vertices[a], mesh.vertices[b]);
+        if (pa - pb).norm() <= tolerance {
+            return Err(Error::Mesh(format!(
+                "zero-length edge {a}-{b}: vertex {a} at ({}, {}, {}) and vertex {b} at \
+                 ({}, {}, {}) coincide; merge them",
+                pa.x, pa.y, pa.z, pb.x, pb.y, pb.z
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// "vertex 12 (valence 4) at (1, 2, 3), ..." for the first few of `vertices`.
+fn describe(mesh: &PolyMesh, conn: &Connectivity, vertices: &[usize], valence: bool) -> String {
+    let mut parts: Vec<String> = vertices
+        .iter()
+        .take(LISTED)
+        .map(|&v| {
+            let p = mesh.vertices[v];
+            let valence = if valence {
+                format!(" (valence {})", conn.valence(v))
+            } else {
+                String::new()
+            };
+            format!("vertex {v}{valence} at ({}, {}, {})", p.x, p.y, p.z)
+        })
+        .collect();
+    if vertices.len() > LISTED {
+        parts.push(format!("and {} more", vertices.len() - LISTED));
+    }
+    parts.join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Vec3;
+
+    fn error(result: Result<Connectivity>) -> String {
+        match result {
+            Err(Error::Mesh(message)) => message,
+            other => panic!("expected a mesh error, got {other:?}"),
+        }
+    }
+
+    /// Two regular hexagons sharing the edge 1-2: a valid (boundary) honeycomb patch.
+    fn hexagon_pair() -> PolyMesh {
+        let s = 3f64.sqrt() / 2.0;
+        let vertices = [
+            (0.0, 1.0),
+            (s, 0.5),
+            (s, -0.5),
+            (0.0, -1.0),
+            (-s, -0.5),
+            (-s, 0.5),
+            (2.0 * s, 1.0),
+            (3.0 * s, 0.5),
+            (3.0 * s, -0.5),
+            (2.0 * s, -1.0),
+        ]
+        .map(|(x, y)| Vec3::new(x, y, 0.0))
+        .to_vec();
+        // Both counter-clockwise, so the shared edge runs in opposite directions.
+        let faces = vec![vec![0, 5, 4, 3, 2, 1], vec![1, 2, 9, 8, 7, 6]];
+        PolyMesh::new(vertices, faces)
+    }
+
+    /// A 3 x 3 vertex grid of four quads: the centre vertex 4 has valence 4.
+    fn quad_grid() -> PolyMesh {
+        let vertices = (0..9)
+            .map(|k| Vec3::new((k % 3) as f64, (k / 3) as f64, 0.0))
+            .collect();
+        let faces = vec![
+            vec![0, 1, 4, 3],
+            vec![1, 2, 5, 4],
+            vec![3, 4, 7, 6],
+            vec![4, 5, 8, 7],
+        ];
+        PolyMesh::new(vertices, faces)
+    }
+
+    #[test]
+    fn hexagon_pair_is_a_valid_base_mesh() {
+        let conn = validate_base_mesh(&hexagon_pair()).unwrap();
+        assert_eq!(conn.num_edges(), 11);
+        assert_eq!(conn.valence(1), 3);
+        validate_surface_mesh(&hexagon_pair()).unwrap();
+    }
+
+    #[test]
+    fn valence_four_is_rejected_for_base_meshes_only() {
+        let mesh = quad_grid();
+        let message = error(validate_base_mesh(&mesh));
+        assert!(
+            message
+                .starts_with("1 vertex has valence > 3 (a honeycomb base mesh must be trivalent)"),
+            "{message}"
+        );
+        assert!(
+            message.contains("vertex 4 (valence 4) at (1, 1, 0)"),
+            "{message}"
+        );
+        assert!(
+            message.contains("split it into valence-3 vertices"),
+            "{message}"
+        );
+        validate_surface_mesh(&mesh).unwrap();
+    }
+
+    #[test]
+    fn many_high_valence_vertices_are_summarised() {
+        // A fan of 4 triangles around each of 7 hubs.
+        let mut mesh = PolyMesh::default();
+        for hub in 0..7 {
+            let base = mesh.vertices.len();
+            let x = 10.0 * hub as f64;
+            mesh.vertices.push(Vec3::new(x, 0.0, 0.0));
+            for (dx, dy) in [(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)] {
+                mesh.vertices.push(Vec3::new(x + dx, dy, 0.0));
+            }
+            for k in 0..4 {
+                mesh.faces
+                    .push(vec![base, base + 1 + k, base + 1 + (k + 1) % 4]);
+            }
+        }
+        let message = error(validate_base_mesh(&mesh));
+        assert!(
+            message.starts_with("7 vertices have valence > 3"),
+            "{message}"
+        );
+        assert!(
+            message.contains("vertex 20 (valence 4) at (40, 0, 0), and 2 more"),
+            "{message}"
+        );
+        assert!(!message.contains("vertex 25 "), "{message}");
+        assert!(message.contains("split them"), "{message}");
+    }
+
+    #[test]
+    fn empty_meshes() {
+        let message = error(validate_surface_mesh(&PolyMesh::default()));
+        assert!(
+            message.contains("empty mesh (0 vertices, 0 faces)"),
+            "{message}"
+        );
+        let mut mesh = hexagon_pair();
+        mesh.faces.clear();
+        let message = error(validate_base_mesh(&mesh));
+        assert!(
+            message.contains("empty mesh (10 vertices, 0 faces)"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn non_finite_coordinate() {
+        let mut mesh = hexagon_pair();
+        mesh.vertices[7].z = f64::NAN;
+        let message = error(validate_surface_mesh(&mesh));
+        assert!(
+            message.contains("vertex 7 has a non-finite coordinate"),
+            "{message}"
+        );
+        assert!(message.contains("NaN"), "{message}");
+    }
+
+    #[test]
+    fn non_manifold_edge_with_three_faces() {
+        let mesh = PolyMesh::new(
+            vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(0.5, 1.0, 0.0),
+                Vec3::new(0.5, -1.0, 0.0),
+                Vec3::new(0.5, 0.0, 1.0),
+            ],
+            vec![vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]],
+        );
+        let message = error(validate_surface_mesh(&mesh));
+        assert!(message.contains("edge 0-1"), "{message}");
+        assert!(message.contains("non-manifold"), "{message}");
+    }
+
+    #[test]
+    fn bow_tie_vertex() {
+        let mesh = PolyMesh::new(
+            vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.5, 0.0),
+                Vec3::new(1.0, -0.5, 0.0),
+                Vec3::new(-1.0, -0.5, 0.0),
+                Vec3::new(-1.0, 0.5, 0.0),
+            ],
+            vec![vec![0, 2, 1], vec![0, 4, 3]],
+        );
+        let message = error(validate_surface_mesh(&mesh));
+        assert!(message.contains("non-manifold vertex 0"), "{message}");
+    }
+
+    #[test]
+    fn isolated_vertex() {
+        let mut mesh = hexagon_pair();
+        mesh.vertices.push(Vec3::new(5.0, 5.0, 5.0));
+        let message = error(validate_surface_mesh(&mesh));
+        assert!(
+            message.contains("1 isolated vertex (used by no face): vertex 10 at (5, 5, 5)"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn zero_length_edge() {
+        let mut mesh = hexagon_pair();
+        mesh.vertices[8] = mesh.vertices[7];
+        let message = error(validate_base_mesh(&mesh));
+        assert!(message.contains("zero-length edge 7-8"), "{message}");
+        assert!(message.contains("vertex 7 at (2.598"), "{message}");
+        assert!(message.contains("merge them"), "{message}");
+    }
+
+    #[test]
+    fn out_of_range_face_index() {
+        let mut mesh = hexagon_pair();
+        mesh.faces[1][3] = 10;
+        let message = error(validate_surface_mesh(&mesh));
+        assert!(message.contains("face 1 refers to vertex 10"), "{message}");
+    }
+}

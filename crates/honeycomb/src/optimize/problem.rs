@@ -1,0 +1,128 @@
+//! Builds the honeycomb's constraint families over a base mesh and a reference surface, both
+//! in the normalized frame.
+
+use super::Weights;
+use crate::constraints::{
+    BoundaryCurve, Closeness, Layout, Node2, Node3, Normalization, OppositeWalls, WallConsistency,
+};
+use crate::geometry::Vec3;
+use crate::mesh::{Connectivity, PolyMesh};
+use crate::solve::Constraint;
+use crate::surface::Surface;
+
+/// Boundary vertices closer than this (normalized units) to S's boundary are kept on it.
+const ON_BOUNDARY: f64 = 0.25;
+
+/// Initial wall normals: each edge direction rotated by -90 degrees about the surface normal at
+/// its midpoint, `n_ab = (v_a - v_b)/|v_a - v_b| x N`. At a regular node they sum to zero.
+pub fn initial_normals(mesh: &PolyMesh, conn: &Connectivity, surface: &Surface) -> Vec<Vec3> {
+    conn.edges
+        .iter()
+        .map(|&[a, b]| {
+            let (pa, pb) = (mesh.vertices[a], mesh.vertices[b]);
+            let n = surface.normal_at((pa + pb) * 0.5);
+            (pa - pb).normalized().cross(n).normalized()
+        })
+        .collect()
+}
+
+/// Vertices of the base mesh's boundary that start on S's boundary.
+pub fn boundary_vertices_on_surface_boundary(
+    mesh: &PolyMesh,
+    conn: &Connectivity,
+    surface: &Surface,
+) -> Vec<usize> {
+    (0..mesh.vertices.len())
+        .filter(|&v| conn.is_boundary_vertex[v])
+        .filter(|&v| {
+            surface
+                .closest_boundary_point(mesh.vertices[v])
+                .is_some_and(|b| b.distance < ON_BOUNDARY)
+        })
+        .collect()
+}
+
+/// Pairs of opposite walls of every hexagonal cell, with the sign of each wall normal as seen
+/// from the cell's orientation.
+fn opposite_wall_pairs(mesh: &PolyMesh, conn: &Connectivity) -> Vec<[(usize, f64); 2]> {
+    let mut pairs = Vec::new();
+    for (f, face) in mesh.faces.iter().enumerate() {
+        if face.len() != 6 {
+            continue;
+        }
+        let m = |k: usize| {
+            let e = conn.face_edges[f][k];
+            (e, conn.edge_sign(e, face[k]))
+        };
+        for k in 0..3 {
+            pairs.push([m(k), m(k + 3)]);
+        }
+    }
+    pairs
+}
+
+pub fn families<'a>(
+    mesh: &PolyMesh,
+    conn: &Connectivity,
+    surface: &'a Surface,
+    weights: &Weights,
+) -> Vec<Box<dyn Constraint + 'a>> {
+    let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+    let node_edges = |v: usize| {
+        conn.vertex_edges[v]
+            .iter()
+            .map(move |&e| (e, conn.edge_sign(e, v)))
+    };
+    let mut node3 = Vec::new();
+    let mut node2 = Vec::new();
+    for v in 0..mesh.vertices.len() {
+        let edges: Vec<(usize, f64)> = node_edges(v).collect();
+        match edges.len() {
+            3 => node3.push([edges[0], edges[1], edges[2]]),
+            2 => node2.push([edges[0], edges[1]]),
+            _ => {} // rejected by validation before we get here
+        }
+    }
+    let mut families: Vec<Box<dyn Constraint + 'a>> = vec![
+        Box::new(Normalization {
+            layout,
+            weight: weights.normalization,
+        }),
+        Box::new(WallConsistency {
+            layout,
+            edges: conn.edges.clone(),
+            weight: weights.consistency,
+        }),
+        Box::new(Node3 {
+            layout,
+            nodes: node3,
+            weight: weights.angle,
+        }),
+        Box::new(Node2 {
+            layout,
+            nodes: node2,
+            weight: weights.angle,
+        }),
+    ];
+    if weights.closeness > 0.0 {
+        families.push(Box::new(Closeness::new(layout, surface, weights.closeness)));
+    }
+    let on_boundary = boundary_vertices_on_surface_boundary(mesh, conn, surface);
+    if weights.boundary > 0.0 && !on_boundary.is_empty() {
+        families.push(Box::new(BoundaryCurve::new(
+            layout,
+            surface,
+            weights.boundary,
+            on_boundary,
+        )));
+    }
+    if weights.fairness > 0.0 {
+        families.push(Box::new(OppositeWalls {
+            layout,
+            pairs: opposite_wall_pairs(mesh, conn),
+            weight: weights.fairness,
+        }));
+    }
+    families.retain(|c| c.num_rows() > 0);
+    families
+}

@@ -1,0 +1,90 @@
+//! `report.json`: the Figure 16 row of a run and everything needed to judge it.
+
+use crate::optimize::{Optimized, Weights};
+use crate::solve::{FamilyResidual, IterationInfo};
+use crate::structure::Measures;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub vertices: usize,
+    pub edges: usize,
+    pub faces: usize,
+    pub iterations: usize,
+    pub converged: bool,
+    pub omega_max_deg: f64,
+    pub omega_avg_deg: f64,
+    pub delta_max: f64,
+    pub delta_avg: f64,
+    pub closeness_max: f64,
+    pub closeness_avg: f64,
+    pub valence_histogram: BTreeMap<usize, usize>,
+    pub mean_edge_length: f64,
+    pub thickness: f64,
+    /// Wall time of the whole optimization (symbolic analysis included).
+    pub seconds: f64,
+    pub seconds_symbolic: f64,
+    pub seconds_assembly: f64,
+    pub seconds_factorization: f64,
+    pub seconds_other: f64,
+    pub unknowns: usize,
+    pub factorizations: usize,
+    pub weights: Weights,
+    /// Solver residuals per constraint family after the last step (normalized frame).
+    pub residuals: Vec<FamilyResidual>,
+    pub history: Vec<IterationInfo>,
+}
+
+impl Report {
+    pub fn new(opt: &Optimized, m: &Measures, weights: &Weights, seconds: f64) -> Report {
+        let s = &opt.solve;
+        Report {
+            vertices: opt.honeycomb.base.vertices.len(),
+            edges: opt.honeycomb.edges.len(),
+            faces: opt.honeycomb.base.faces.len(),
+            iterations: s.iterations,
+            converged: s.converged,
+            omega_max_deg: m.omega_max_deg,
+            omega_avg_deg: m.omega_avg_deg,
+            delta_max: m.delta_max,
+            delta_avg: m.delta_avg,
+            closeness_max: m.closeness_max,
+            closeness_avg: m.closeness_avg,
+            valence_histogram: m.valence_histogram.clone(),
+            mean_edge_length: m.mean_edge_length,
+            thickness: opt.honeycomb.thickness,
+            seconds,
+            seconds_symbolic: s.seconds_symbolic,
+            seconds_assembly: s.seconds_assembly,
+            seconds_factorization: s.seconds_factorization,
+            seconds_other: s.seconds_other,
+            unknowns: s.unknowns,
+            factorizations: s.factorizations,
+            weights: *weights,
+            residuals: s.families.clone(),
+            history: s.history.clone(),
+        }
+    }
+
+    pub const FIGURE16_HEADER: &'static str =
+        "   |V|    |E|  w_ang w_con w_nrm  #It  omega_max  omega_avg  delta_max  delta_avg   T (s)";
+
+    /// One row in the layout of the paper's Figure 16.
+    pub fn figure16_row(&self) -> String {
+        format!(
+            "{:>6} {:>6} {:>6} {:>5} {:>5} {:>4} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>7.3}",
+            self.vertices,
+            self.edges,
+            self.weights.angle,
+            self.weights.consistency,
+            self.weights.normalization,
+            self.iterations,
+            self.omega_max_deg,
+            self.omega_avg_deg,
+            self.delta_max,
+            self.delta_avg,
+            self.seconds
+        )
+    }
+}

@@ -1,0 +1,92 @@
+//! Sparse Cholesky on a fixed pattern: the symbolic analysis (fill-reducing ordering, elimination
+//! structure) is done once, every later factorization is numeric only.
+
+use super::normal_matrix::NormalMatrix;
+use crate::error::{Error, Result};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    SymmetricOrdering,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+
+pub struct Cholesky {
+    symbolic: SymbolicCholesky<usize>,
+    factor: Vec<f64>,
+    factor_scratch: MemBuffer,
+    solve_scratch: MemBuffer,
+    has_factor: bool,
+}
+
+impl Cholesky {
+    pub fn analyse(matrix: &NormalMatrix) -> Result<Cholesky> {
+        let pattern = pattern_of(matrix);
+        let symbolic = factorize_symbolic_cholesky(
+            pattern,
+            Side::Upper,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .map_err(|e| Error::Solver(format!("symbolic factorization failed: {e:?}")))?;
+        let factor_scratch = MemBuffer::new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+        );
+        let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let factor = vec![0.0; symbolic.len_val()];
+        Ok(Cholesky {
+            symbolic,
+            factor,
+            factor_scratch,
+            solve_scratch,
+            has_factor: false,
+        })
+    }
+
+    /// Non-zeros of the factor L.
+    pub fn factor_nnz(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// Numeric factorization of the matrix's current values.
+    pub fn factorize(&mut self, matrix: &NormalMatrix) -> Result<()> {
+        let a = SparseColMatRef::new(pattern_of(matrix), &matrix.values);
+        self.has_factor = false;
+        self.symbolic
+            .factorize_numeric_llt(
+                &mut self.factor,
+                a,
+                Side::Upper,
+                LltRegularization::default(),
+                Par::Seq,
+                MemStack::new(&mut self.factor_scratch),
+                Default::default(),
+            )
+            .map_err(|e| {
+                Error::Solver(format!(
+                    "the linearized system is not positive definite ({e:?}); \
+                     try a larger regularization (--eps)"
+                ))
+            })?;
+        self.has_factor = true;
+        Ok(())
+    }
+
+    /// Solves `A x = b` in place with the last factorization.
+    pub fn solve_in_place(&mut self, b: &mut [f64]) {
+        assert!(self.has_factor, "solve before factorize");
+        let n = b.len();
+        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
+        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            Par::Seq,
+            MemStack::new(&mut self.solve_scratch),
+        );
+    }
+}
+
+fn pattern_of(m: &NormalMatrix) -> SymbolicSparseColMatRef<'_, usize> {
+    SymbolicSparseColMatRef::new_checked(m.n, m.n, &m.col_ptr, None, &m.row_idx)
+}

@@ -1,0 +1,97 @@
+//! The realized honeycomb: base mesh M, second mesh M' = v + thickness * axis (same vertex order
+//! and faces), and one wall quad `v_a v_b v'_b v'_a` per edge.
+
+use crate::geometry::Vec3;
+use crate::mesh::{Connectivity, PolyMesh};
+use serde::Serialize;
+
+#[derive(Clone, Debug)]
+pub struct Honeycomb {
+    pub base: PolyMesh,
+    pub offset: PolyMesh,
+    pub edges: Vec<[usize; 2]>,
+    pub axes: Vec<Vec3>,
+    /// Per-vertex distance between M and M' along the axis (model units).
+    pub thickness: f64,
+}
+
+impl Honeycomb {
+    pub fn new(base: PolyMesh, conn: &Connectivity, axes: Vec<Vec3>, thickness: f64) -> Honeycomb {
+        let offset_vertices = base
+            .vertices
+            .iter()
+            .zip(&axes)
+            .map(|(&v, &a)| v + a * thickness)
+            .collect();
+        let offset = PolyMesh::new(offset_vertices, base.faces.clone());
+        Honeycomb {
+            base,
+            offset,
+            edges: conn.edges.clone(),
+            axes,
+            thickness,
+        }
+    }
+
+    /// The corners `v_a, v_b, v'_b, v'_a` of the wall of edge `e`.
+    pub fn wall(&self, e: usize) -> [Vec3; 4] {
+        let [a, b] = self.edges[e];
+        let (m, o) = (&self.base.vertices, &self.offset.vertices);
+        [m[a], m[b], o[b], o[a]]
+    }
+
+    /// All walls as one quad mesh over the vertices of M followed by those of M'.
+    pub fn walls(&self) -> PolyMesh {
+        let nv = self.base.vertices.len();
+        let mut vertices = self.base.vertices.clone();
+        vertices.extend_from_slice(&self.offset.vertices);
+        let faces = self
+            .edges
+            .iter()
+            .map(|&[a, b]| vec![a, b, nv + b, nv + a])
+            .collect();
+        PolyMesh::new(vertices, faces)
+    }
+
+    /// Unit normal of the realized wall quad of edge `e` (cross product of its diagonals),
+    /// oriented like the solver's `n_e`: pointing away from the edge's first vertex side.
+    pub fn wall_normal(&self, e: usize) -> Vec3 {
+        let [p0, p1, p2, p3] = self.wall(e);
+        let n = (p2 - p0).cross(p3 - p1).normalized();
+        // Orientation: n_ab . (v_a - v_b) = 0 fixes nothing; use the edge/axis frame instead,
+        // n_ab = (v_a - v_b) x axis, matching the initial rotation of the edge about N.
+        let reference = (p0 - p1).cross(self.axes[self.edges[e][0]]);
+        if n.dot(reference) < 0.0 {
+            -n
+        } else {
+            n
+        }
+    }
+
+    pub fn to_json(&self) -> StructureJson {
+        StructureJson {
+            thickness: self.thickness,
+            vertices: self.base.vertices.iter().map(|v| v.to_array()).collect(),
+            offset_vertices: self.offset.vertices.iter().map(|v| v.to_array()).collect(),
+            faces: self.base.faces.clone(),
+            edges: self.edges.clone(),
+            wall_normals: (0..self.edges.len())
+                .map(|e| self.wall_normal(e).to_array())
+                .collect(),
+            node_axes: self.axes.iter().map(|a| a.to_array()).collect(),
+        }
+    }
+}
+
+/// `structure.json`: the honeycomb for other tools, in model units.
+#[derive(Serialize)]
+pub struct StructureJson {
+    pub thickness: f64,
+    pub vertices: Vec<[f64; 3]>,
+    pub offset_vertices: Vec<[f64; 3]>,
+    pub faces: Vec<Vec<usize>>,
+    /// Edge `e = (a, b)`; its wall normal is `wall_normals[e]` as seen from `a`.
+    pub edges: Vec<[usize; 2]>,
+    pub wall_normals: Vec<[f64; 3]>,
+    pub node_axes: Vec<[f64; 3]>,
+}

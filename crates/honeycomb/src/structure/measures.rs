@@ -1,0 +1,133 @@
+//! Quality measures of a realized honeycomb (DESIGN.md section 3), computed from the meshes M
+//! and M' alone, never from solver variables.
+
+use super::Honeycomb;
+use crate::geometry::{segment_distance, Vec3};
+use crate::surface::Surface;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Measures {
+    /// Deviation of the dihedral angles between consecutive walls at a node from 120 degrees.
+    pub omega_max_deg: f64,
+    pub omega_avg_deg: f64,
+    /// Wall planarity: distance of a wall quad's diagonals over its mean edge length.
+    pub delta_max: f64,
+    pub delta_avg: f64,
+    /// Distance of a vertex of M to S over the mean edge length of M.
+    pub closeness_max: f64,
+    pub closeness_avg: f64,
+    pub mean_edge_length: f64,
+    pub valence_histogram: BTreeMap<usize, usize>,
+    /// Per node: the largest omega there (degrees).
+    #[serde(skip)]
+    pub omega_per_node: Vec<f64>,
+    /// Per edge: delta of its wall.
+    #[serde(skip)]
+    pub delta_per_wall: Vec<f64>,
+}
+
+/// The angles (degrees) between consecutive walls around the axis at node `v`: three for a
+/// trivalent node, one (the angle between the two walls) at a valence-2 node.
+pub fn node_angles(h: &Honeycomb, v: usize, neighbours: &[usize]) -> Vec<f64> {
+    let (p, q) = (h.base.vertices[v], h.offset.vertices[v]);
+    let axis = (q - p).normalized();
+    let u = axis.any_orthogonal();
+    let w = axis.cross(u);
+    // Each wall leaves the axis towards its edge's other end.
+    let mut dirs: Vec<f64> = neighbours
+        .iter()
+        .map(|&j| {
+            let d = h.base.vertices[j] - p;
+            d.dot(w).atan2(d.dot(u))
+        })
+        .collect();
+    let deg = |r: f64| r.to_degrees();
+    match dirs.len() {
+        2 => {
+            let mut a = (dirs[0] - dirs[1]).abs();
+            if a > std::f64::consts::PI {
+                a = 2.0 * std::f64::consts::PI - a;
+            }
+            vec![deg(a)]
+        }
+        _ => {
+            dirs.sort_by(f64::total_cmp);
+            let k = dirs.len();
+            (0..k)
+                .map(|i| {
+                    let next = if i + 1 < k {
+                        dirs[i + 1]
+                    } else {
+                        dirs[0] + 2.0 * std::f64::consts::PI
+                    };
+                    deg(next - dirs[i])
+                })
+                .collect()
+        }
+    }
+}
+
+/// Planarity of a quad: distance between its diagonals over its mean edge length.
+pub fn quad_planarity([p0, p1, p2, p3]: [Vec3; 4]) -> f64 {
+    let mean = ((p1 - p0).norm() + (p2 - p1).norm() + (p3 - p2).norm() + (p0 - p3).norm()) / 4.0;
+    segment_distance(p0, p2, p1, p3) / mean.max(1e-300)
+}
+
+pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
+    let nv = h.base.vertices.len();
+    let mut neighbours = vec![Vec::new(); nv];
+    for &[a, b] in &h.edges {
+        neighbours[a].push(b);
+        neighbours[b].push(a);
+    }
+    let mut valence_histogram = BTreeMap::new();
+    let (mut omega_sum, mut omega_count) = (0.0, 0usize);
+    let omega_per_node: Vec<f64> = (0..nv)
+        .map(|v| {
+            *valence_histogram.entry(neighbours[v].len()).or_insert(0) += 1;
+            if neighbours[v].len() < 2 {
+                return 0.0;
+            }
+            node_angles(h, v, &neighbours[v])
+                .into_iter()
+                .map(|a| {
+                    let dev = (a - 120.0).abs();
+                    omega_sum += dev;
+                    omega_count += 1;
+                    dev
+                })
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let delta_per_wall: Vec<f64> = (0..h.edges.len())
+        .map(|e| quad_planarity(h.wall(e)))
+        .collect();
+    let mean_edge_length = h
+        .edges
+        .iter()
+        .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
+        .sum::<f64>()
+        / h.edges.len().max(1) as f64;
+    let closeness: Vec<f64> = h
+        .base
+        .vertices
+        .iter()
+        .map(|&p| surface.closest_point(p).distance / mean_edge_length)
+        .collect();
+    let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    let avg = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
+    Measures {
+        omega_max_deg: max(&omega_per_node),
+        omega_avg_deg: omega_sum / omega_count.max(1) as f64,
+        delta_max: max(&delta_per_wall),
+        delta_avg: avg(&delta_per_wall),
+        closeness_max: max(&closeness),
+        closeness_avg: avg(&closeness),
+        mean_edge_length,
+        valence_histogram,
+        omega_per_node,
+        delta_per_wall,
+    }
+}
