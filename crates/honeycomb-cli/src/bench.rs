@@ -15,10 +15,15 @@ use std::time::Instant;
 pub struct Args {
     /// Approximate vertex counts, comma separated (run in this order; keep them ascending so
     /// that the process's peak memory is the peak of each size).
-    #[arg(long, value_delimiter = ',', default_values_t = [1500, 8500, 35000, 140000])]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_values_t = [1500, 8500, 35000, 140000],
+        allow_negative_numbers = true
+    )]
     pub sizes: Vec<usize>,
     /// Iterations per run (all are done: the convergence test is off).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, allow_negative_numbers = true)]
     pub iterations: usize,
     /// Built-in surface: saddle, dome or cylinder.
     #[arg(long, default_value = "dome")]
@@ -62,7 +67,7 @@ pub fn run(args: Args) -> Result<()> {
             ..OptimizeOptions::default()
         };
         let start = Instant::now();
-        let optimized = optimize(&base, &surface, &options, &mut |_| {})?;
+        let optimized = optimize(&base, Some(&surface), &options, &mut |_| {})?;
         let seconds = start.elapsed().as_secs_f64();
         let measures = measure(&optimized.honeycomb, &Surface::from_mesh(&surface)?);
         let report = Report::new(&optimized, &measures, &options.weights, seconds);

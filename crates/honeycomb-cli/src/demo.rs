@@ -16,7 +16,7 @@ pub struct Args {
     #[arg(long, default_value = "saddle")]
     pub shape: Shape,
     /// Approximate number of vertices of the hexagonal base mesh.
-    #[arg(long, default_value_t = 1500)]
+    #[arg(long, default_value_t = 1500, allow_negative_numbers = true)]
     pub vertices: usize,
     #[command(flatten)]
     pub opts: SolveArgs,
@@ -36,7 +36,7 @@ pub fn run(args: Args) -> Result<()> {
         )));
     }
     let (base, surface) = lifted_hex_patch(args.shape, args.vertices);
-    optimize_and_write(&base, &surface, &args.opts, &args.output)?;
+    optimize_and_write(&base, Some(&surface), &args.opts, &args.output)?;
     // The inputs too, so the result can be reproduced with `honeycomb optimize`.
     write_mesh(&args.output.join("input_base.obj"), &base)?;
     write_mesh(&args.output.join("surface.obj"), &surface)?;

@@ -1,7 +1,9 @@
 //! `honeycomb optimize BASE [--surface S] ... -o DIR`
 
 use crate::progress::{IterationBar, Output};
-use honeycomb::mesh::{read_mesh, PolyMesh};
+use honeycomb::mesh::{
+    nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
+};
 use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
@@ -29,31 +31,31 @@ pub struct SolveArgs {
     #[arg(long)]
     pub surface: Option<PathBuf>,
     /// Maximum number of guided-projection iterations.
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, allow_negative_numbers = true)]
     pub iterations: usize,
     /// Distance between M and M' along the node axes, in model units (default 0.3 mean edge lengths).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub thickness: Option<f64>,
     /// Weight of the 120-degree node condition.
-    #[arg(long, default_value_t = Weights::default().angle)]
+    #[arg(long, default_value_t = Weights::default().angle, allow_negative_numbers = true)]
     pub w_angle: f64,
     /// Weight of wall consistency (the wall contains its edge).
-    #[arg(long, default_value_t = Weights::default().consistency)]
+    #[arg(long, default_value_t = Weights::default().consistency, allow_negative_numbers = true)]
     pub w_cons: f64,
     /// Weight of the unit-normal condition.
-    #[arg(long, default_value_t = Weights::default().normalization)]
+    #[arg(long, default_value_t = Weights::default().normalization, allow_negative_numbers = true)]
     pub w_norm: f64,
     /// Weight of closeness to the reference surface.
-    #[arg(long, default_value_t = Weights::default().closeness)]
+    #[arg(long, default_value_t = Weights::default().closeness, allow_negative_numbers = true)]
     pub w_close: f64,
     /// Weight of keeping boundary vertices on the surface's boundary.
-    #[arg(long, default_value_t = Weights::default().boundary)]
+    #[arg(long, default_value_t = Weights::default().boundary, allow_negative_numbers = true)]
     pub w_boundary: f64,
     /// Weight of opposite-wall fairness in hexagons (fades with the regularization).
-    #[arg(long, default_value_t = Weights::default().fairness)]
+    #[arg(long, default_value_t = Weights::default().fairness, allow_negative_numbers = true)]
     pub w_fair: f64,
     /// Initial regularization eps (normalized frame); it shrinks as steps succeed.
-    #[arg(long, default_value_t = SolverOptions::default().eps)]
+    #[arg(long, default_value_t = SolverOptions::default().eps, allow_negative_numbers = true)]
     pub eps: f64,
     /// No progress output.
     #[arg(short, long)]
@@ -87,6 +89,22 @@ impl SolveArgs {
                 "--eps {}: expected a positive number, typically 1e-3",
                 self.eps
             )));
+        }
+        // Checked here too, so that the message names the flag (the library names the weight).
+        for (flag, w, required) in [
+            ("--w-angle", self.w_angle, true),
+            ("--w-cons", self.w_cons, true),
+            ("--w-norm", self.w_norm, true),
+            ("--w-close", self.w_close, false),
+            ("--w-boundary", self.w_boundary, false),
+            ("--w-fair", self.w_fair, false),
+        ] {
+            if !w.is_finite() || !(0.0..=1e6).contains(&w) || (required && w == 0.0) {
+                let range = if required { "above 0" } else { "from 0" };
+                return Err(Error::Parameter(format!(
+                    "{flag} {w}: expected a weight {range} up to 1e6"
+                )));
+            }
         }
         let weights = Weights {
             angle: self.w_angle,
@@ -123,19 +141,40 @@ pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
 /// Optimizes, measures, writes the structure directory and prints the result.
 pub fn optimize_and_write(
     base: &PolyMesh,
-    surface: &PolyMesh,
+    surface: Option<&PolyMesh>,
     args: &SolveArgs,
     dir: &Path,
 ) -> Result<Report> {
     let options = args.options()?;
+    // Before the solve, so that an unusable -o fails at once, not after a long run.
+    if dir.exists() && !dir.is_dir() {
+        return Err(Error::Parameter(format!(
+            "-o {}: exists and is not a directory",
+            dir.display()
+        )));
+    }
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     let output = args.output();
+    let nonconvex = nonconvex_faces(base);
+    if !nonconvex.is_empty() {
+        eprintln!(
+            "warning: {} of {} cells of the base mesh are not convex (first: cell {}); \
+             the optimization may fold or collapse them",
+            nonconvex.len(),
+            base.faces.len(),
+            nonconvex[0]
+        );
+    }
     let bar = IterationBar::new(output, options.solver.max_iterations);
     let start = Instant::now();
     let result = optimize(base, surface, &options, &mut |info| bar.update(info));
     bar.finish();
     let optimized = result?;
     let seconds = start.elapsed().as_secs_f64();
-    let model_surface = Surface::from_mesh(surface)?;
+    let model_surface = Surface::from_mesh(surface.unwrap_or(base))?;
     let measures = measure(&optimized.honeycomb, &model_surface);
     let report = Report::new(&optimized, &measures, &options.weights, seconds);
     honeycomb::export::write_structure(dir, &optimized.honeycomb, &report)?;
@@ -163,15 +202,53 @@ pub fn optimize_and_write(
         }
         Output::Quiet => {}
     }
+    if !report.honeycomb {
+        return Err(Error::Solver(format!(
+            "the result is not a honeycomb after {} iterations: omega_max {:.3} deg, \
+             delta_max {:.1e} (tolerance {} deg, {:.0e}); the outputs in {} are for inspection. \
+             More --iterations or a larger --eps may help{}",
+            report.iterations,
+            report.omega_max_deg,
+            report.delta_max,
+            Report::OMEGA_TOLERANCE_DEG,
+            Report::DELTA_TOLERANCE,
+            dir.display(),
+            if nonconvex.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; {} cells of the base mesh are not convex",
+                    nonconvex.len()
+                )
+            }
+        )));
+    }
     Ok(report)
 }
 
 pub fn run(args: Args) -> Result<()> {
+    // Parameters first: a typo should not wait for a large mesh to load.
+    args.opts.options()?;
     let output = args.opts.output();
     let base = load(&args.base, output)?;
+    // Validated here too (optimize does it again), so that the message names the file.
+    name_file(&args.base, validate_base_mesh(&base))?;
     let surface = match &args.opts.surface {
-        Some(path) => load(path, output)?,
-        None => base.clone(),
+        Some(path) => {
+            let surface = load(path, output)?;
+            name_file(path, validate_surface_mesh(&surface))?;
+            Some(surface)
+        }
+        None => None,
     };
-    optimize_and_write(&base, &surface, &args.opts, &args.output).map(|_| ())
+    optimize_and_write(&base, surface.as_ref(), &args.opts, &args.output).map(|_| ())
+}
+
+/// Prefixes a mesh validation error with the file it is about.
+fn name_file<T>(path: &Path, result: Result<T>) -> Result<()> {
+    match result {
+        Ok(_) => Ok(()),
+        Err(Error::Mesh(message)) => Err(Error::Mesh(format!("{}: {message}", path.display()))),
+        Err(e) => Err(e),
+    }
 }

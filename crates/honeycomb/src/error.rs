@@ -10,8 +10,9 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
-    /// A file that cannot be read as the format it claims (line is 1-based; 0 = whole file).
-    #[error("{path}:{line}: {message}")]
+    /// A file that cannot be read as the format it claims (line is 1-based; 0 = whole file,
+    /// shown without a line number).
+    #[error("{path}{}: {message}", line_suffix(.line))]
     Parse {
         path: PathBuf,
         line: usize,
@@ -29,3 +30,12 @@ pub enum Error {
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// `:12` for line 12; nothing for 0 (the whole file, or binary data).
+fn line_suffix(line: &usize) -> String {
+    if *line == 0 {
+        String::new()
+    } else {
+        format!(":{line}")
+    }
+}

@@ -12,7 +12,10 @@ pub struct Report {
     pub edges: usize,
     pub faces: usize,
     pub iterations: usize,
+    /// The solver's residuals fell below its tolerance.
     pub converged: bool,
+    /// The realized structure meets the honeycomb tolerances (see `is_honeycomb`).
+    pub honeycomb: bool,
     pub omega_max_deg: f64,
     pub omega_avg_deg: f64,
     pub delta_max: f64,
@@ -29,6 +32,9 @@ pub struct Report {
     pub seconds_factorization: f64,
     pub seconds_other: f64,
     pub unknowns: usize,
+    /// Non-zeros of the normal matrix's upper triangle and of its Cholesky factor.
+    pub matrix_nnz: usize,
+    pub factor_nnz: usize,
     pub factorizations: usize,
     pub weights: Weights,
     /// Solver residuals per constraint family after the last step (normalized frame).
@@ -39,7 +45,10 @@ pub struct Report {
 impl Report {
     pub fn new(opt: &Optimized, m: &Measures, weights: &Weights, seconds: f64) -> Report {
         let s = &opt.solve;
+        let honeycomb =
+            m.omega_max_deg <= Self::OMEGA_TOLERANCE_DEG && m.delta_max <= Self::DELTA_TOLERANCE;
         Report {
+            honeycomb,
             vertices: opt.honeycomb.base.vertices.len(),
             edges: opt.honeycomb.edges.len(),
             faces: opt.honeycomb.base.faces.len(),
@@ -60,12 +69,19 @@ impl Report {
             seconds_factorization: s.seconds_factorization,
             seconds_other: s.seconds_other,
             unknowns: s.unknowns,
+            matrix_nnz: s.matrix_nnz,
+            factor_nnz: s.factor_nnz,
             factorizations: s.factorizations,
             weights: *weights,
             residuals: s.families.clone(),
             history: s.history.clone(),
         }
     }
+
+    /// Largest node-angle deviation of a structure we call a honeycomb (degrees).
+    pub const OMEGA_TOLERANCE_DEG: f64 = 0.1;
+    /// Largest wall non-planarity of a structure we call a honeycomb.
+    pub const DELTA_TOLERANCE: f64 = 1e-3;
 
     pub const FIGURE16_HEADER: &'static str =
         "   |V|    |E|  w_ang w_con w_nrm  #It  omega_max  omega_avg  delta_max  delta_avg   T (s)";

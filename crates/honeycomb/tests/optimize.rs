@@ -15,7 +15,7 @@ fn run(shape: Shape, vertices: usize) -> (Measures, usize) {
         },
         ..OptimizeOptions::default()
     };
-    let opt = optimize(&base, &surface, &options, &mut |_| {}).expect("optimize");
+    let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).expect("optimize");
     let m = measure(&opt.honeycomb, &Surface::from_mesh(&surface).unwrap());
     println!(
         "{shape:?} |V|={} it={} omega {:.2e}/{:.2e} delta {:.2e}/{:.2e} closeness {:.2e}",
@@ -78,7 +78,7 @@ fn the_initial_mesh_is_far_from_a_honeycomb() {
         },
         ..OptimizeOptions::default()
     };
-    let opt = optimize(&base, &surface, &options, &mut |_| {}).unwrap();
+    let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).unwrap();
     let m = measure(&opt.honeycomb, &Surface::from_mesh(&surface).unwrap());
     assert!(m.delta_max > 1e-3 || m.omega_max_deg > 0.1, "{m:?}");
 }

@@ -53,12 +53,6 @@ impl Connectivity {
             let mut fe = Vec::with_capacity(f.len());
             for k in 0..f.len() {
                 let (a, b) = (f[k], f[(k + 1) % f.len()]);
-                if let Some(other) = half_edges.insert((a, b), fi) {
-                    return Err(Error::Mesh(format!(
-                        "edge {a}-{b} is used in the same direction by faces {other} and {fi}: \
-                         the faces are not consistently oriented, or the edge is non-manifold"
-                    )));
-                }
                 let key = (a.min(b), a.max(b));
                 let e = *edge_index.entry(key).or_insert_with(|| {
                     edges.push([key.0, key.1]);
@@ -75,6 +69,14 @@ impl Connectivity {
                         "non-manifold edge {a}-{b}: shared by more than two faces ({}, {}, {fi})",
                         slot[0].unwrap(),
                         slot[1].unwrap()
+                    )));
+                }
+                // After the face count: a third face on an edge always repeats a direction, and
+                // is reported as a non-manifold edge rather than as an orientation flip.
+                if let Some(other) = half_edges.insert((a, b), fi) {
+                    return Err(Error::Mesh(format!(
+                        "edge {a}-{b} is used in the same direction by faces {other} and {fi}: \
+                         the faces are not consistently oriented"
                     )));
                 }
                 fe.push(e);

@@ -1,11 +1,13 @@
 //! Polygon meshes: storage, adjacency, validation and file formats.
 
 mod connectivity;
+mod convexity;
 pub mod io;
 mod polymesh;
 mod validate;
 
 pub use connectivity::Connectivity;
+pub use convexity::nonconvex_faces;
 pub use io::{read_mesh, write_atomically, write_mesh, LoadedMesh};
 pub use polymesh::PolyMesh;
 pub use validate::{validate_base_mesh, validate_surface_mesh};

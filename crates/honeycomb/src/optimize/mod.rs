@@ -34,16 +34,27 @@ pub struct Optimized {
     pub frame: Frame,
 }
 
-/// Optimizes `base` into a honeycomb that follows `surface`. Both meshes are validated first.
+/// Optimizes `base` into a honeycomb that follows the design surface `surface` (`None`: the
+/// base mesh itself, whose own zigzag boundary is then not imposed). Both are validated first.
 pub fn optimize(
     base: &PolyMesh,
-    surface: &PolyMesh,
+    surface: Option<&PolyMesh>,
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Optimized> {
     options.weights.validate()?;
     let conn = validate_base_mesh(base)?;
-    validate_surface_mesh(surface)?;
+    let mut weights = options.weights;
+    let surface = match surface {
+        Some(s) => {
+            validate_surface_mesh(s)?;
+            s
+        }
+        None => {
+            weights.boundary = 0.0;
+            base
+        }
+    };
     let frame = Frame::of(base);
     let mesh = frame.to_normalized(base);
     let normalized_surface = Surface::from_mesh(&frame.to_normalized(surface))?;
@@ -51,7 +62,7 @@ pub fn optimize(
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
     let normals = initial_normals(&mesh, &conn, &normalized_surface);
     let mut x = layout.pack(&mesh.vertices, &normals);
-    let families = families(&mesh, &conn, &normalized_surface, &options.weights);
+    let families = families(&mesh, &conn, &normalized_surface, &weights);
     let mut solver = GuidedProjection::new(layout.len(), families)?;
     let solve = solver.solve(&mut x, &options.solver, progress)?;
 

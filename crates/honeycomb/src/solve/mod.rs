@@ -4,6 +4,7 @@
 mod cholesky;
 mod constraint;
 mod normal_matrix;
+mod ordering;
 mod solver;
 
 pub use constraint::{jacobian_fd_error, Constraint, Role};

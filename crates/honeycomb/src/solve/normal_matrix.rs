@@ -134,22 +134,4 @@ impl NormalMatrix {
             self.values[d] += eps;
         }
     }
-
-    /// `y = A x` for the symmetric matrix stored as its upper triangle.
-    pub fn multiply(&self, x: &[f64], y: &mut [f64]) {
-        y.fill(0.0);
-        for j in 0..self.n {
-            let xj = x[j];
-            let mut acc = 0.0;
-            for p in self.col_ptr[j]..self.col_ptr[j + 1] {
-                let i = self.row_idx[p];
-                let a = self.values[p];
-                acc += a * x[i];
-                if i != j {
-                    y[i] += a * xj;
-                }
-            }
-            y[j] += acc;
-        }
-    }
 }

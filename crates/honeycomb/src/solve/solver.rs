@@ -73,11 +73,11 @@ pub struct SolveReport {
     pub history: Vec<IterationInfo>,
 }
 
-/// Regularization decay after an accepted full step: with a small eps the step is close to
+/// Regularization decay after a full step that lowered the energy: with a small eps the step is close to
 /// the minimum-norm Gauss-Newton step, which converges where a fixed eps stalls on the
 /// low-frequency modes (singular values below sqrt(eps)).
 const EPS_DECAY: f64 = 0.1;
-/// Regularization growth after a halved step.
+/// Regularization growth after a step that raised the energy or had to be halved.
 const EPS_GROWTH: f64 = 10.0;
 
 /// Step control halves a step only when it multiplies the weighted residual energy by more
@@ -101,7 +101,7 @@ impl<'a> GuidedProjection<'a> {
     pub fn new(n: usize, families: Vec<Box<dyn Constraint + 'a>>) -> Result<Self> {
         let start = Instant::now();
         let matrix = NormalMatrix::new(n, &families);
-        let cholesky = Cholesky::analyse(&matrix)?;
+        let cholesky = Cholesky::analyse(&matrix, 3)?;
         let residuals = families.iter().map(|c| vec![0.0; c.num_rows()]).collect();
         let jacobians = families
             .iter()
@@ -209,23 +209,22 @@ impl<'a> GuidedProjection<'a> {
             // Step control: halve while the step blows the energy up.
             let mut halvings = 0;
             let mut scale = 1.0;
-            loop {
+            let trial_energy = loop {
                 for ((t, &xi), &d) in trial.iter_mut().zip(x.iter()).zip(&rhs) {
                     *t = xi + scale * d;
                 }
-                if !opts.step_control || halvings == 5 {
-                    break;
-                }
-                let (trial_energy, _) = self.evaluate(&trial, eps, eps0);
-                if trial_energy <= energy * ENERGY_GROWTH_ALLOWED {
-                    break;
+                let trial_energy = self.evaluate(&trial, eps, eps0).0;
+                let acceptable = trial_energy <= energy * ENERGY_GROWTH_ALLOWED;
+                if !opts.step_control || halvings == 5 || acceptable {
+                    break trial_energy;
                 }
                 scale *= 0.5;
                 halvings += 1;
-            }
+            };
             let step = rhs.iter().fold(0.0f64, |m, d| m.max((scale * d).abs()));
             x.copy_from_slice(&trial);
-            eps = if halvings == 0 {
+            // Trust the linearization more only after a step that paid off.
+            eps = if halvings == 0 && trial_energy <= energy {
                 (eps * EPS_DECAY).max(opts.eps_min)
             } else {
                 (eps * EPS_GROWTH).min(eps0)

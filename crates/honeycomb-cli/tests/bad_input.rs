@@ -1,0 +1,415 @@
+//! `honeycomb` on broken meshes and absurd parameters: every case must exit non-zero with one
+//! `error:` line naming the problem, never panic, and write nothing.
+
+mod common;
+
+use common::{assert_clean_failure, run, stdout, TempDir};
+use honeycomb::generate::hex_disk;
+use honeycomb::mesh::{write_mesh, PolyMesh};
+use std::path::{Path, PathBuf};
+
+const S: f64 = 0.866_025_403_784_438_6; // sqrt(3) / 2
+
+/// OBJ text: one `v` line per vertex (vertex k on line k + 1), then one `f` line per face.
+fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
+    let mut text = String::new();
+    for [x, y, z] in vertices {
+        text.push_str(&format!("v {x} {y} {z}\n"));
+    }
+    for face in faces {
+        let indices: Vec<String> = face.iter().map(|v| (v + 1).to_string()).collect();
+        text.push_str(&format!("f {}\n", indices.join(" ")));
+    }
+    text
+}
+
+/// Two regular hexagons of edge 1 sharing the edge 1-2, both counter-clockwise: a valid base
+/// mesh of 10 vertices and 11 edges.
+fn hexagon_pair() -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
+    let vertices = [
+        (0.0, 1.0),
+        (S, 0.5),
+        (S, -0.5),
+        (0.0, -1.0),
+        (-S, -0.5),
+        (-S, 0.5),
+        (2.0 * S, 1.0),
+        (3.0 * S, 0.5),
+        (3.0 * S, -0.5),
+        (2.0 * S, -1.0),
+    ]
+    .map(|(x, y)| [x, y, 0.0])
+    .to_vec();
+    let faces = vec![vec![0, 5, 4, 3, 2, 1], vec![1, 2, 9, 8, 7, 6]];
+    (vertices, faces)
+}
+
+/// A valid generated base mesh (seven hexagons, 24 vertices) written as OBJ.
+fn valid_base(dir: &TempDir) -> PathBuf {
+    let path = dir.join("base.obj");
+    let mesh: PolyMesh = hex_disk(2.0);
+    assert_eq!(mesh.faces.len(), 7);
+    write_mesh(&path, &mesh).expect("write the valid base mesh");
+    path
+}
+
+/// `honeycomb optimize BASE -o DIR/out` must fail cleanly naming every keyword.
+fn optimize_fails(dir: &TempDir, base: &Path, keywords: &[&str]) -> String {
+    let out = dir.join("out");
+    let output = run([
+        "optimize".as_ref(),
+        base.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    // Whatever the problem, the message says which file has it.
+    let name = base.file_name().unwrap().to_string_lossy().into_owned();
+    let keywords: Vec<&str> = keywords.iter().copied().chain([name.as_str()]).collect();
+    let line = assert_clean_failure(&output, &keywords, Some(&out));
+    assert!(!out.exists(), "{} was created", out.display());
+    line
+}
+
+/// `honeycomb optimize VALID_BASE EXTRA... -o DIR/out` must fail cleanly naming every keyword.
+fn optimize_with_fails(dir: &TempDir, extra: &[&str], keywords: &[&str]) -> String {
+    let base = valid_base(dir);
+    let out = dir.join("out");
+    let mut args: Vec<std::ffi::OsString> = vec!["optimize".into(), base.into()];
+    args.extend(extra.iter().map(Into::into));
+    args.extend(["-o".into(), out.clone().into()]);
+    let output = run(&args);
+    let line = assert_clean_failure(&output, keywords, Some(&out));
+    assert!(!out.exists(), "{} was created", out.display());
+    assert_eq!(stdout(&output), "", "nothing on stdout");
+    line
+}
+
+#[test]
+fn valid_base_mesh_is_accepted() {
+    // The control for every case below: the same files without the defect are optimized.
+    let dir = TempDir::new("valid_base_mesh_is_accepted");
+    let (vertices, faces) = hexagon_pair();
+    for (name, base) in [
+        ("pair.obj", dir.write("pair.obj", &obj(&vertices, &faces))),
+        ("disk.obj", valid_base(&dir)),
+    ] {
+        let out = dir.join(&format!("out-{name}"));
+        let output = run([
+            "optimize".as_ref(),
+            base.as_os_str(),
+            "--quiet".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+        common::assert_success(&output, name);
+        assert!(out.join("report.json").is_file(), "{name}");
+    }
+}
+
+#[test]
+fn empty_file() {
+    let dir = TempDir::new("empty_file");
+    for name in ["empty.obj", "empty.off"] {
+        let base = dir.write(name, "");
+        optimize_fails(&dir, &base, &[name, "empty file"]);
+    }
+    // No line applies to a whole-file problem: no ":0:" in the message.
+    let base = dir.write("empty.obj", "");
+    let line = optimize_fails(&dir, &base, &["empty file"]);
+    assert!(!line.contains(":0:"), "{line}");
+    let base = dir.write("blank.obj", "\n  \n# only a comment\n");
+    optimize_fails(&dir, &base, &["blank.obj", "empty"]);
+}
+
+#[test]
+fn truncated_off() {
+    let dir = TempDir::new("truncated_off");
+    let base = dir.write("truncated.off", "OFF\n10 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n");
+    optimize_fails(
+        &dir,
+        &base,
+        &["truncated.off", "truncated", "10 vertices", "only 4"],
+    );
+}
+
+#[test]
+fn nan_coordinate() {
+    let dir = TempDir::new("nan_coordinate");
+    let (mut vertices, faces) = hexagon_pair();
+    vertices[2][0] = f64::NAN; // vertex 2, on line 3
+    let base = dir.write("nan.obj", &obj(&vertices, &faces));
+    assert!(std::fs::read_to_string(&base).unwrap().contains("v NaN"));
+    let at_line_3 = format!("{}:3:", base.display());
+    optimize_fails(&dir, &base, &[&at_line_3, "vertex 2", "non-finite", "NaN"]);
+}
+
+#[test]
+fn out_of_range_face_index() {
+    let dir = TempDir::new("out_of_range_face_index");
+    let (vertices, mut faces) = hexagon_pair();
+    faces[1][3] = 10; // written as 11 in the 1-based file; face 1 is on line 12
+    let base = dir.write("range.obj", &obj(&vertices, &faces));
+    let at_line_12 = format!("{}:12:", base.display());
+    optimize_fails(
+        &dir,
+        &base,
+        &[
+            &at_line_12,
+            "face 1",
+            "vertex index 11",
+            "out of range",
+            "10 vertices",
+        ],
+    );
+
+    // The same in a 0-based OFF file (index 0 is used, so it is not taken for 1-based).
+    let mut text = String::from("OFF\n10 2 0\n");
+    for [x, y, z] in &vertices {
+        text.push_str(&format!("{x} {y} {z}\n"));
+    }
+    text.push_str("6 0 5 4 3 2 1\n6 1 2 9 10 7 6\n");
+    let base = dir.write("range.off", &text);
+    optimize_fails(
+        &dir,
+        &base,
+        &["range.off:14:", "face 1", "vertex index 10", "out of range"],
+    );
+}
+
+#[test]
+fn non_manifold_edge() {
+    let dir = TempDir::new("non_manifold_edge");
+    let (mut vertices, mut faces) = hexagon_pair();
+    // A third hexagon on the edge 1-2, standing upright in the plane x = S.
+    let h = 3f64.sqrt() / 2.0;
+    vertices.extend([
+        [S, -1.0, h],
+        [S, -0.5, 2.0 * h],
+        [S, 0.5, 2.0 * h],
+        [S, 1.0, h],
+    ]);
+    faces.push(vec![1, 2, 10, 11, 12, 13]);
+    let base = dir.write("fin.obj", &obj(&vertices, &faces));
+    let line = optimize_fails(&dir, &base, &["non-manifold edge", "more than two faces"]);
+    assert!(line.contains("1-2") || line.contains("2-1"), "{line}");
+}
+
+#[test]
+fn inconsistent_orientation() {
+    // Not on the list, but the neighbour of the case above: two faces, one flipped.
+    let dir = TempDir::new("inconsistent_orientation");
+    let (vertices, mut faces) = hexagon_pair();
+    faces[1].reverse();
+    let base = dir.write("flipped.obj", &obj(&vertices, &faces));
+    optimize_fails(
+        &dir,
+        &base,
+        &["same direction", "not consistently oriented"],
+    );
+}
+
+#[test]
+fn non_manifold_vertex() {
+    let dir = TempDir::new("non_manifold_vertex");
+    // Two hexagons, centred at (0, 0) and (0, 2), touching only at vertex 1 = (0, 1).
+    let corners = |cy: f64| -> Vec<[f64; 3]> {
+        (0..6)
+            .map(|k| {
+                let t = std::f64::consts::FRAC_PI_6 + std::f64::consts::FRAC_PI_3 * k as f64;
+                [t.cos(), cy + t.sin(), 0.0]
+            })
+            .collect()
+    };
+    let mut vertices = corners(0.0); // 0..6; vertex 1 is the top corner (0, 1)
+    let upper = corners(2.0); // its corner 4 is (0, 1) again
+    vertices.extend(
+        upper
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| k != 4)
+            .map(|(_, p)| *p),
+    );
+    // Upper corners 0, 1, 2, 3, 5 became vertices 6, 7, 8, 9, 10.
+    let faces = vec![vec![0, 1, 2, 3, 4, 5], vec![6, 7, 8, 9, 1, 10]];
+    let base = dir.write("bowtie.obj", &obj(&vertices, &faces));
+    optimize_fails(&dir, &base, &["non-manifold vertex 1"]);
+}
+
+#[test]
+fn valence_four_vertex() {
+    let dir = TempDir::new("valence_four_vertex");
+    // Four quads on a 3 x 3 vertex grid: the centre vertex 4 has valence 4.
+    let vertices: Vec<[f64; 3]> = (0..9)
+        .map(|k| [(k % 3) as f64, (k / 3) as f64, 0.0])
+        .collect();
+    let faces = vec![
+        vec![0, 1, 4, 3],
+        vec![1, 2, 5, 4],
+        vec![3, 4, 7, 6],
+        vec![4, 5, 8, 7],
+    ];
+    let base = dir.write("quads.obj", &obj(&vertices, &faces));
+    optimize_fails(
+        &dir,
+        &base,
+        &[
+            "valence > 3",
+            "trivalent",
+            "vertex 4 (valence 4) at (1, 1, 0)",
+        ],
+    );
+
+    // A bigger grid: vertex 12 is the centre of a 5 x 5 grid, among 9 interior vertices.
+    let vertices: Vec<[f64; 3]> = (0..25)
+        .map(|k| [(k % 5) as f64, (k / 5) as f64, 0.0])
+        .collect();
+    let faces: Vec<Vec<usize>> = (0..16)
+        .map(|q| {
+            let v = q % 4 + 5 * (q / 4);
+            vec![v, v + 1, v + 6, v + 5]
+        })
+        .collect();
+    let base = dir.write("grid.obj", &obj(&vertices, &faces));
+    optimize_fails(
+        &dir,
+        &base,
+        &[
+            "9 vertices have valence > 3",
+            "vertex 12 (valence 4)",
+            "and 4 more",
+        ],
+    );
+}
+
+#[test]
+fn isolated_vertex() {
+    let dir = TempDir::new("isolated_vertex");
+    let (mut vertices, faces) = hexagon_pair();
+    vertices.push([5.0, 5.0, 5.0]);
+    let base = dir.write("isolated.obj", &obj(&vertices, &faces));
+    optimize_fails(&dir, &base, &["isolated vertex", "vertex 10 at (5, 5, 5)"]);
+}
+
+#[test]
+fn zero_length_edge() {
+    let dir = TempDir::new("zero_length_edge");
+    let (mut vertices, faces) = hexagon_pair();
+    vertices[8] = vertices[7];
+    let base = dir.write("zero.obj", &obj(&vertices, &faces));
+    optimize_fails(&dir, &base, &["zero-length edge 7-8", "coincide"]);
+}
+
+#[test]
+fn unknown_format() {
+    let dir = TempDir::new("unknown_format");
+    let base = dir.write("points.xyz", "0 0 0\n1 0 0\n0 1 0\n");
+    optimize_fails(
+        &dir,
+        &base,
+        &["unknown mesh format", ".xyz", ".obj, .off or .ply"],
+    );
+    let base = dir.write("noextension", "v 0 0 0\n");
+    optimize_fails(&dir, &base, &["unknown mesh format", "no file extension"]);
+}
+
+#[test]
+fn missing_file() {
+    let dir = TempDir::new("missing_file");
+    let base = dir.join("does-not-exist.obj");
+    let path = base.display().to_string();
+    optimize_fails(&dir, &base, &[&path, "No such file"]);
+}
+
+#[test]
+fn bad_surface_file() {
+    // The --surface file goes through the same checks, and is named in the message.
+    let dir = TempDir::new("bad_surface_file");
+    let surface = dir.write("surface.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+    let surface_arg = surface.display().to_string();
+    optimize_with_fails(
+        &dir,
+        &["--surface", &surface_arg],
+        &["surface.obj:4:", "vertex index 4", "out of range"],
+    );
+}
+
+#[test]
+fn zero_iterations() {
+    let dir = TempDir::new("zero_iterations");
+    optimize_with_fails(&dir, &["--iterations", "0"], &["--iterations 0"]);
+    // Negative: rejected by the argument parser, which names the option.
+    optimize_with_fails(&dir, &["--iterations", "-1"], &["'-1'", "--iterations"]);
+}
+
+#[test]
+fn negative_thickness() {
+    let dir = TempDir::new("negative_thickness");
+    optimize_with_fails(
+        &dir,
+        &["--thickness", "-1"],
+        &["--thickness -1", "positive"],
+    );
+    optimize_with_fails(&dir, &["--thickness=-1"], &["--thickness -1", "positive"]);
+    optimize_with_fails(&dir, &["--thickness", "0"], &["--thickness 0", "positive"]);
+}
+
+#[test]
+fn nan_thickness() {
+    let dir = TempDir::new("nan_thickness");
+    optimize_with_fails(&dir, &["--thickness", "nan"], &["--thickness NaN"]);
+    optimize_with_fails(&dir, &["--thickness", "inf"], &["--thickness inf"]);
+    optimize_with_fails(&dir, &["--thickness", "thick"], &["'thick'", "--thickness"]);
+}
+
+#[test]
+fn negative_weight() {
+    let dir = TempDir::new("negative_weight");
+    optimize_with_fails(&dir, &["--w-angle", "-3"], &["--w-angle -3", "weight"]);
+    optimize_with_fails(&dir, &["--w-fair", "-0.5"], &["--w-fair -0.5", "weight"]);
+    // The honeycomb conditions need a positive weight; the others may be 0.
+    optimize_with_fails(&dir, &["--w-norm", "0"], &["--w-norm 0", "weight"]);
+    optimize_with_fails(&dir, &["--w-cons", "nan"], &["--w-cons NaN", "weight"]);
+    optimize_with_fails(
+        &dir,
+        &["--w-close", "1e9"],
+        &["--w-close 1000000000", "1e6"],
+    );
+}
+
+#[test]
+fn zero_eps() {
+    let dir = TempDir::new("zero_eps");
+    optimize_with_fails(&dir, &["--eps", "0"], &["--eps 0", "positive"]);
+    optimize_with_fails(&dir, &["--eps", "-1"], &["--eps -1", "positive"]);
+}
+
+#[test]
+fn demo_with_three_vertices() {
+    let dir = TempDir::new("demo_with_three_vertices");
+    let out = dir.join("out");
+    let output = run([
+        "demo".as_ref(),
+        "--vertices".as_ref(),
+        "3".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert_clean_failure(&output, &["--vertices 3", "50"], Some(&out));
+    assert!(!out.exists());
+    assert_eq!(stdout(&output), "");
+}
+
+#[test]
+fn bench_with_ten_vertices() {
+    let output = run(["bench", "--sizes", "10"]);
+    assert_clean_failure(&output, &["--sizes 10", "50"], None);
+    // Rejected before the table header is printed.
+    assert_eq!(stdout(&output), "");
+    let output = run(["bench", "--sizes", "1500,10", "--iterations", "1"]);
+    assert_clean_failure(&output, &["--sizes 10"], None);
+    assert_eq!(
+        stdout(&output),
+        "",
+        "a later bad size is rejected before any run"
+    );
+}

@@ -1,0 +1,163 @@
+//! Helpers shared by the end-to-end tests of the `honeycomb` binary.
+
+#![allow(dead_code)] // each test file uses a different subset
+
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A fresh, empty directory under the system temporary directory, removed on drop.
+pub struct TempDir {
+    pub path: PathBuf,
+}
+
+impl TempDir {
+    /// `name` must be unique among the tests of one binary (the test's own name is).
+    pub fn new(name: &str) -> TempDir {
+        let path =
+            std::env::temp_dir().join(format!("honeycomb-cli-test-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).expect("create the test directory");
+        TempDir { path }
+    }
+
+    pub fn join(&self, name: &str) -> PathBuf {
+        self.path.join(name)
+    }
+
+    /// Writes `text` to `name` in the directory and returns its path.
+    pub fn write(&self, name: &str, text: &str) -> PathBuf {
+        let path = self.join(name);
+        std::fs::write(&path, text).expect("write a test input");
+        path
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.path);
+    }
+}
+
+/// Runs the `honeycomb` binary with `args`.
+pub fn run<I, S>(args: I) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    Command::new(env!("CARGO_BIN_EXE_honeycomb"))
+        .args(args)
+        .output()
+        .expect("run the honeycomb binary")
+}
+
+pub fn stdout(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+pub fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// Fails with the command's streams when it did not exit with 0.
+pub fn assert_success(output: &Output, what: &str) {
+    assert!(
+        output.status.success(),
+        "{what}: exit {:?}\nstdout:\n{}\nstderr:\n{}",
+        output.status.code(),
+        stdout(output),
+        stderr(output)
+    );
+    assert!(
+        !stderr(output).contains("panicked"),
+        "{what}: {}",
+        stderr(output)
+    );
+}
+
+/// The names in `dir` (empty when it does not exist).
+pub fn entries(dir: &Path) -> Vec<String> {
+    let Ok(list) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = list
+        .map(|e| {
+            e.expect("directory entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    names.sort();
+    names
+}
+
+/// Checks a clean failure: a non-zero exit code, exactly one `error:` line on stderr that
+/// contains every one of `keywords`, no panic, and nothing written to `out_dir` (absent or
+/// empty, so no stray temporary files either). Returns the error line.
+pub fn assert_clean_failure(output: &Output, keywords: &[&str], out_dir: Option<&Path>) -> String {
+    let err = stderr(output);
+    let context = format!(
+        "exit {:?}\nstdout:\n{}\nstderr:\n{err}",
+        output.status.code(),
+        stdout(output)
+    );
+    assert!(!output.status.success(), "expected a failure\n{context}");
+    assert!(
+        output.status.code().is_some(),
+        "killed by a signal\n{context}"
+    );
+    assert!(!err.contains("panicked"), "panic\n{context}");
+    assert!(!err.contains("RUST_BACKTRACE"), "panic\n{context}");
+    let error_lines: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(error_lines.len(), 1, "expected one error line\n{context}");
+    let line = error_lines[0];
+    println!("{line}");
+    for keyword in keywords {
+        assert!(
+            line.contains(keyword),
+            "the error line does not name {keyword:?}\n{context}"
+        );
+    }
+    if let Some(dir) = out_dir {
+        assert_eq!(
+            entries(dir),
+            Vec::<String>::new(),
+            "files left in {}\n{context}",
+            dir.display()
+        );
+    }
+    line.to_string()
+}
+
+/// The `../shared/data` directory next to the workspace, if present.
+pub fn shared_data() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+    dir.is_dir().then(|| dir.canonicalize().unwrap_or(dir))
+}
+
+/// A report (or `--json` output) parsed as JSON.
+pub fn parse_json(text: &str, what: &str) -> serde_json::Value {
+    serde_json::from_str(text).unwrap_or_else(|e| panic!("{what} is not JSON ({e}):\n{text}"))
+}
+
+/// `report[key]` as a number, failing with the key's name when missing or not a number.
+pub fn number(report: &serde_json::Value, key: &str) -> f64 {
+    report[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("report key {key:?} missing or not a number: {report}"))
+}
+
+/// The keys every report has (report.json and `optimize --json`).
+pub const REPORT_KEYS: [&str; 10] = [
+    "vertices",
+    "edges",
+    "iterations",
+    "omega_max_deg",
+    "omega_avg_deg",
+    "delta_max",
+    "delta_avg",
+    "closeness_max",
+    "closeness_avg",
+    "seconds",
+];

@@ -1,0 +1,187 @@
+//! `honeycomb optimize` on the real trivalent meshes of `../shared/data` (next to the
+//! workspace). A fresh clone without that directory skips these tests with a message.
+
+mod common;
+
+use common::{number, parse_json, run, shared_data, stderr, TempDir, REPORT_KEYS};
+use std::process::Output;
+
+struct Run {
+    output: Output,
+    /// report.json, when the run wrote one.
+    report: Option<serde_json::Value>,
+    /// Keeps the output directory until the test ends.
+    _dir: TempDir,
+}
+
+/// `honeycomb optimize DATA/NAME --quiet -o TMP/out`, or None (after saying so) without data.
+fn optimize_shared(name: &str, extra: &[&str]) -> Option<Run> {
+    let Some(data) = shared_data() else {
+        println!("skipping: ../shared/data not found");
+        return None;
+    };
+    let input = data.join(name);
+    assert!(
+        input.is_file(),
+        "{} is missing from ../shared/data",
+        input.display()
+    );
+    let dir = TempDir::new(&format!("shared-{name}"));
+    let out = dir.join("out");
+    let mut args: Vec<std::ffi::OsString> = vec!["optimize".into(), input.into(), "--quiet".into()];
+    args.extend(extra.iter().map(Into::into));
+    args.extend(["-o".into(), out.clone().into()]);
+    let output = run(&args);
+    assert!(
+        !stderr(&output).contains("panicked"),
+        "{name}: {}",
+        stderr(&output)
+    );
+    let report = std::fs::read_to_string(out.join("report.json"))
+        .ok()
+        .map(|text| parse_json(&text, "report.json"));
+    let r = Run {
+        output,
+        report,
+        _dir: dir,
+    };
+    print_figures(name, &r);
+    Some(r)
+}
+
+fn print_figures(name: &str, r: &Run) {
+    println!("{name}: exit {:?}", r.output.status.code());
+    for line in stderr(&r.output).lines() {
+        println!("{name}: stderr: {line}");
+    }
+    if let Some(report) = &r.report {
+        let n = |key: &str| number(report, key);
+        println!(
+            "{name}: |V| {} |E| {} faces {} iterations {} converged {} omega_max {:.3e} deg \
+             omega_avg {:.3e} delta_max {:.3e} delta_avg {:.3e} closeness_max {:.3e} \
+             seconds {:.3}",
+            n("vertices"),
+            n("edges"),
+            report["faces"],
+            n("iterations"),
+            report["converged"],
+            n("omega_max_deg"),
+            n("omega_avg_deg"),
+            n("delta_max"),
+            n("delta_avg"),
+            n("closeness_max"),
+            n("seconds")
+        );
+    }
+}
+
+/// Exit 0, a complete report and a honeycomb within the paper's tolerances.
+fn assert_converged(name: &str, r: &Run) -> serde_json::Value {
+    assert!(
+        r.output.status.success(),
+        "{name}: exit {:?}\n{}",
+        r.output.status.code(),
+        stderr(&r.output)
+    );
+    let report = r.report.clone().expect("report.json");
+    for key in REPORT_KEYS {
+        assert!(number(&report, key).is_finite(), "{name}: {key}");
+    }
+    let omega = number(&report, "omega_max_deg");
+    let delta = number(&report, "delta_max");
+    assert!(
+        omega < 0.01,
+        "{name}: omega_max {omega:.3e} deg (expected < 0.01) after {} iterations, \
+         delta_max {delta:.3e}",
+        report["iterations"]
+    );
+    assert!(delta < 1e-6, "{name}: delta_max {delta:.3e}");
+    report
+}
+
+/// Either a honeycomb (exit 0) or one clear error line with a complete report saying it is not
+/// one (the outputs stay for inspection).
+fn assert_converged_or_clear_failure(name: &str, r: &Run) {
+    if r.output.status.success() {
+        assert_converged(name, r);
+        return;
+    }
+    let err = stderr(&r.output);
+    let errors: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
+    assert_eq!(errors.len(), 1, "{name}: {err}");
+    assert!(errors[0].contains("not a honeycomb"), "{name}: {err}");
+    assert!(errors[0].contains("omega_max"), "{name}: {err}");
+    let report = r.report.as_ref().expect("report.json for inspection");
+    assert_eq!(report["honeycomb"], false, "{name}");
+    for key in REPORT_KEYS {
+        assert!(number(report, key).is_finite(), "{name}: {key}");
+    }
+}
+
+#[test]
+fn hexagonalminimal_one_based_off_is_read_and_optimized() {
+    let name = "hexagonalminimal_plusgauss.off";
+    let Some(r) = optimize_shared(name, &[]) else {
+        return;
+    };
+    // The file's faces are 1-based: read anyway, with a warning (also under --quiet).
+    let err = stderr(&r.output);
+    let one_based: Vec<&str> = err.lines().filter(|l| l.contains("1-based")).collect();
+    assert_eq!(one_based.len(), 1, "{err}");
+    assert!(
+        one_based[0].starts_with("warning:") && one_based[0].contains(name),
+        "{err}"
+    );
+    assert_converged_or_clear_failure(name, &r);
+    let report = r.report.as_ref().expect("report.json");
+    assert_eq!(number(report, "vertices"), 400.0);
+    assert_eq!(number(report, "edges"), 580.0);
+}
+
+#[test]
+#[ignore = "known gap (issue 2 notes): 40 of its 180 cells are non-convex and the iteration \
+            folds them; run with --ignored to check progress"]
+fn hexagonalminimal_converges() {
+    let name = "hexagonalminimal_plusgauss.off";
+    if let Some(r) = optimize_shared(name, &["--iterations", "30"]) {
+        assert_converged(name, &r);
+    }
+}
+
+#[test]
+fn enneper_converges_or_fails_clearly() {
+    let name = "enneper2.off";
+    let Some(r) = optimize_shared(name, &[]) else {
+        return;
+    };
+    // Every cell of this mesh is non-convex: the user is told before the solve.
+    assert!(
+        stderr(&r.output).contains("not convex"),
+        "{}",
+        stderr(&r.output)
+    );
+    assert_converged_or_clear_failure(name, &r);
+    assert_eq!(
+        number(r.report.as_ref().expect("report"), "vertices"),
+        1920.0
+    );
+}
+
+#[test]
+fn dome_with_mixed_cells_runs() {
+    let name = "dome1_tri_pattern_10.off";
+    let Some(r) = optimize_shared(name, &[]) else {
+        return;
+    };
+    assert_converged_or_clear_failure(name, &r);
+    let report = r.report.as_ref().expect("report.json");
+    assert_eq!(number(report, "vertices"), 17916.0);
+    assert_eq!(report["faces"], 8833);
+    // 4-gons to 14-gons, but every vertex trivalent (2 on the boundary).
+    let valences: Vec<&String> = report["valence_histogram"]
+        .as_object()
+        .expect("valence_histogram")
+        .keys()
+        .collect();
+    assert_eq!(valences, ["2", "3"], "{name}");
+}
