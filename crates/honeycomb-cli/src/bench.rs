@@ -81,9 +81,9 @@ pub fn run(args: Args) -> Result<()> {
                 "{}",
                 serde_json::json!({
                     "vertices": report.vertices, "edges": report.edges,
-                    "iterations": report.iterations, "omega_max_deg": report.omega_max_deg,
-                    "omega_avg_deg": report.omega_avg_deg, "delta_max": report.delta_max,
-                    "delta_avg": report.delta_avg, "closeness_max": report.closeness_max,
+                    "iterations": report.iterations, "omega_max_deg": report.measures.omega_max_deg,
+                    "omega_avg_deg": report.measures.omega_avg_deg, "delta_max": report.measures.delta_max,
+                    "delta_avg": report.measures.delta_avg, "closeness_max": report.measures.closeness_max,
                     "seconds": seconds, "ms_per_iteration": per_iteration_ms,
                     "factorization_share": factor_share / 100.0,
                     "seconds_symbolic": s.seconds_symbolic, "factor_nnz": s.factor_nnz,

@@ -208,8 +208,8 @@ pub fn optimize_and_write(
              delta_max {:.1e} (tolerance {} deg, {:.0e}); the outputs in {} are for inspection. \
              More --iterations or a larger --eps may help{}",
             report.iterations,
-            report.omega_max_deg,
-            report.delta_max,
+            report.measures.omega_max_deg,
+            report.measures.delta_max,
             Report::OMEGA_TOLERANCE_DEG,
             Report::DELTA_TOLERANCE,
             dir.display(),

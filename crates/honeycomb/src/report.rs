@@ -4,7 +4,6 @@ use crate::optimize::{Optimized, Weights};
 use crate::solve::{FamilyResidual, IterationInfo};
 use crate::structure::Measures;
 use serde::Serialize;
-use std::collections::BTreeMap;
 
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
@@ -16,14 +15,9 @@ pub struct Report {
     pub converged: bool,
     /// The realized structure meets the honeycomb tolerances (see `is_honeycomb`).
     pub honeycomb: bool,
-    pub omega_max_deg: f64,
-    pub omega_avg_deg: f64,
-    pub delta_max: f64,
-    pub delta_avg: f64,
-    pub closeness_max: f64,
-    pub closeness_avg: f64,
-    pub valence_histogram: BTreeMap<usize, usize>,
-    pub mean_edge_length: f64,
+    /// omega, delta, closeness and the valence histogram, as top-level keys.
+    #[serde(flatten)]
+    pub measures: Measures,
     pub thickness: f64,
     /// Wall time of the whole optimization (symbolic analysis included).
     pub seconds: f64,
@@ -54,14 +48,7 @@ impl Report {
             faces: opt.honeycomb.base.faces.len(),
             iterations: s.iterations,
             converged: s.converged,
-            omega_max_deg: m.omega_max_deg,
-            omega_avg_deg: m.omega_avg_deg,
-            delta_max: m.delta_max,
-            delta_avg: m.delta_avg,
-            closeness_max: m.closeness_max,
-            closeness_avg: m.closeness_avg,
-            valence_histogram: m.valence_histogram.clone(),
-            mean_edge_length: m.mean_edge_length,
+            measures: m.clone(),
             thickness: opt.honeycomb.thickness,
             seconds,
             seconds_symbolic: s.seconds_symbolic,
@@ -96,10 +83,10 @@ impl Report {
             self.weights.consistency,
             self.weights.normalization,
             self.iterations,
-            self.omega_max_deg,
-            self.omega_avg_deg,
-            self.delta_max,
-            self.delta_avg,
+            self.measures.omega_max_deg,
+            self.measures.omega_avg_deg,
+            self.measures.delta_max,
+            self.measures.delta_avg,
             self.seconds
         )
     }

@@ -27,7 +27,7 @@ impl Cholesky {
     /// indices) the ordering is computed on the block graph.
     pub fn analyse(matrix: &NormalMatrix, block: usize) -> Result<Cholesky> {
         let pattern = pattern_of(matrix);
-        let blocked = (block > 1 && matrix.n % block == 0)
+        let blocked = (block > 1 && matrix.n.is_multiple_of(block))
             .then(|| block_amd(matrix, block))
             .transpose()?;
         let ordering = match &blocked {

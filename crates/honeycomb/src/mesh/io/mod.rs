@@ -122,6 +122,22 @@ pub fn write_atomically(
     })
 }
 
+/// The body shared by OFF and ASCII PLY: one `x y z` line per vertex, then one
+/// `k i_1 ... i_k` line per face.
+fn write_counted_body(w: &mut dyn Write, mesh: &PolyMesh) -> std::io::Result<()> {
+    for v in &mesh.vertices {
+        writeln!(w, "{} {} {}", v.x, v.y, v.z)?;
+    }
+    for f in &mesh.faces {
+        write!(w, "{}", f.len())?;
+        for &i in f {
+            write!(w, " {i}")?;
+        }
+        writeln!(w)?;
+    }
+    Ok(())
+}
+
 fn parse_error(path: &Path, line: usize, message: impl Into<String>) -> Error {
     Error::Parse {
         path: path.to_path_buf(),

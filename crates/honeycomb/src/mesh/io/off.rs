@@ -2,7 +2,8 @@
 //! ...): one vertex per line, then one face per line as `k i1 .. ik [colour]`.
 
 use super::{
-    before, capacity, check_face_range, parse_error, parse_position, strip_bom, LoadedMesh,
+    before, capacity, check_face_range, parse_error, parse_position, strip_bom, write_counted_body,
+    LoadedMesh,
 };
 use crate::error::Result;
 use crate::mesh::PolyMesh;
@@ -183,17 +184,7 @@ fn parse_face(content: &str, face: usize, path: &Path, line: usize) -> Result<Ve
 pub fn write_off(w: &mut dyn Write, mesh: &PolyMesh) -> std::io::Result<()> {
     writeln!(w, "OFF")?;
     writeln!(w, "{} {} 0", mesh.vertices.len(), mesh.faces.len())?;
-    for v in &mesh.vertices {
-        writeln!(w, "{} {} {}", v.x, v.y, v.z)?;
-    }
-    for f in &mesh.faces {
-        write!(w, "{}", f.len())?;
-        for &i in f {
-            write!(w, " {i}")?;
-        }
-        writeln!(w)?;
-    }
-    Ok(())
+    write_counted_body(w, mesh)
 }
 
 #[cfg(test)]

@@ -2,7 +2,9 @@
 //! element's x, y, z and the `face` element's `vertex_indices` (or `vertex_index`) lists; every
 //! other element and property is read past and dropped.
 
-use super::{capacity, check_face_range, check_finite, parse_error, LoadedMesh};
+use super::{
+    capacity, check_face_range, check_finite, parse_error, write_counted_body, LoadedMesh,
+};
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
@@ -553,17 +555,7 @@ pub fn write_ply(w: &mut dyn Write, mesh: &PolyMesh) -> std::io::Result<()> {
         mesh.vertices.len(),
         mesh.faces.len()
     )?;
-    for v in &mesh.vertices {
-        writeln!(w, "{} {} {}", v.x, v.y, v.z)?;
-    }
-    for f in &mesh.faces {
-        write!(w, "{}", f.len())?;
-        for &i in f {
-            write!(w, " {i}")?;
-        }
-        writeln!(w)?;
-    }
-    Ok(())
+    write_counted_body(w, mesh)
 }
 
 #[cfg(test)]
