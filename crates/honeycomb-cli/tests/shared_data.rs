@@ -119,7 +119,7 @@ fn assert_converged_or_clear_failure(name: &str, r: &Run) {
 }
 
 #[test]
-fn hexagonalminimal_one_based_off_is_read_and_optimized() {
+fn hexagonalminimal_one_based_off_converges() {
     let name = "hexagonalminimal_plusgauss.off";
     let Some(r) = optimize_shared(name, &[]) else {
         return;
@@ -132,20 +132,11 @@ fn hexagonalminimal_one_based_off_is_read_and_optimized() {
         one_based[0].starts_with("warning:") && one_based[0].contains(name),
         "{err}"
     );
-    assert_converged_or_clear_failure(name, &r);
-    let report = r.report.as_ref().expect("report.json");
-    assert_eq!(number(report, "vertices"), 400.0);
-    assert_eq!(number(report, "edges"), 580.0);
-}
-
-#[test]
-#[ignore = "known gap (issue 2 notes): 40 of its 180 cells are non-convex and the iteration \
-            folds them; run with --ignored to check progress"]
-fn hexagonalminimal_converges() {
-    let name = "hexagonalminimal_plusgauss.off";
-    if let Some(r) = optimize_shared(name, &["--iterations", "30"]) {
-        assert_converged(name, &r);
-    }
+    let report = assert_converged(name, &r);
+    assert_eq!(number(&report, "vertices"), 400.0);
+    assert_eq!(number(&report, "edges"), 580.0);
+    // S is the mesh itself: on average the vertices stay on it.
+    assert!(number(&report, "closeness_avg") < 0.05, "{report}");
 }
 
 #[test]

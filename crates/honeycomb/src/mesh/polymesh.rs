@@ -50,6 +50,30 @@ impl PolyMesh {
         c / (self.vertices.len().max(1) as f64)
     }
 
+    /// Each face of more than three vertices replaced by a star of triangles around its
+    /// centroid (an added vertex). Unlike a fan from a corner, the star does not fold a
+    /// non-convex or twisted cell over itself, so it makes a fair surface of a polygon mesh.
+    pub fn star_triangulated(&self) -> PolyMesh {
+        let mut vertices = self.vertices.clone();
+        let mut faces = Vec::with_capacity(self.faces.len() * 6);
+        for f in &self.faces {
+            if f.len() == 3 {
+                faces.push(f.clone());
+                continue;
+            }
+            let mut c = Vec3::ZERO;
+            for &i in f {
+                c += self.vertices[i];
+            }
+            vertices.push(c / f.len() as f64);
+            let center = vertices.len() - 1;
+            for k in 0..f.len() {
+                faces.push(vec![f[k], f[(k + 1) % f.len()], center]);
+            }
+        }
+        PolyMesh::new(vertices, faces)
+    }
+
     /// Fan triangulation of every face (faces are assumed convex enough for a fan).
     pub fn triangulated(&self) -> Vec<[usize; 3]> {
         let mut tris = Vec::with_capacity(self.faces.len() * 2);
@@ -59,5 +83,44 @@ impl PolyMesh {
             }
         }
         tris
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Signed areas (along +z) of a planar triangulation's triangles.
+    fn signed_areas(vertices: &[Vec3], tris: impl Iterator<Item = [usize; 3]>) -> Vec<f64> {
+        tris.map(|[a, b, c]| {
+            (vertices[b] - vertices[a])
+                .cross(vertices[c] - vertices[a])
+                .z
+        })
+        .collect()
+    }
+
+    #[test]
+    fn star_triangulation_does_not_fold_a_non_convex_cell() {
+        // A hexagon with its second corner pushed inwards, counter-clockwise: the fan from
+        // the first corner crosses the dent.
+        let mut corners: Vec<Vec3> = (0..6)
+            .map(|k| {
+                let t = std::f64::consts::FRAC_PI_3 * k as f64;
+                Vec3::new(t.cos(), t.sin(), 0.0)
+            })
+            .collect();
+        corners[1] = Vec3::new(0.3, 0.2, 0.0);
+        let mesh = PolyMesh::new(corners, vec![(0..6).collect()]);
+        let fan = signed_areas(&mesh.vertices, mesh.triangulated().into_iter());
+        assert!(fan.iter().any(|&a| a < 0.0), "the fan should fold: {fan:?}");
+        let star = mesh.star_triangulated();
+        assert_eq!(star.vertices.len(), 7);
+        assert_eq!(star.faces.len(), 6);
+        let areas = signed_areas(
+            &star.vertices,
+            star.faces.iter().map(|f| [f[0], f[1], f[2]]),
+        );
+        assert!(areas.iter().all(|&a| a > 0.0), "{areas:?}");
     }
 }

@@ -34,6 +34,15 @@ pub struct Optimized {
     pub frame: Frame,
 }
 
+/// The reference surface S as a mesh: the given design surface, or else the base mesh with
+/// its cells star-triangulated (fans from a corner would fold non-convex cells).
+pub fn reference_surface(base: &PolyMesh, surface: Option<&PolyMesh>) -> PolyMesh {
+    match surface {
+        Some(s) => s.clone(),
+        None => base.star_triangulated(),
+    }
+}
+
 /// Optimizes `base` into a honeycomb that follows the design surface `surface` (`None`: the
 /// base mesh itself, whose own zigzag boundary is then not imposed). Both are validated first.
 pub fn optimize(
@@ -45,16 +54,12 @@ pub fn optimize(
     options.weights.validate()?;
     let conn = validate_base_mesh(base)?;
     let mut weights = options.weights;
-    let surface = match surface {
-        Some(s) => {
-            validate_surface_mesh(s)?;
-            s
-        }
-        None => {
-            weights.boundary = 0.0;
-            base
-        }
-    };
+    if let Some(s) = surface {
+        validate_surface_mesh(s)?;
+    } else {
+        weights.boundary = 0.0;
+    }
+    let surface = &reference_surface(base, surface);
     let frame = Frame::of(base);
     let mesh = frame.to_normalized(base);
     let normalized_surface = Surface::from_mesh(&frame.to_normalized(surface))?;
