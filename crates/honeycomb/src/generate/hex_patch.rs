@@ -10,7 +10,9 @@ use std::collections::HashMap;
 /// lie within `radius` of the origin, in the plane z = 0.
 pub fn hex_disk(radius: f64) -> PolyMesh {
     let s3 = 3f64.sqrt();
-    let range = (radius / s3).ceil() as i64 + 2;
+    // Rows are 1.5 apart and a row's cells shift by half a cell per row: covering the disk
+    // needs |j| <= radius / 1.5 and |i| <= radius / sqrt(3) + |j| / 2 < radius.
+    let range = radius.ceil() as i64 + 2;
     let mut vertices = Vec::new();
     let mut index: HashMap<(i64, i64), usize> = HashMap::new();
     let mut faces = Vec::new();
@@ -44,4 +46,31 @@ pub fn radius_for_vertices(vertices: usize) -> f64 {
     // A hexagon of edge 1 has area 3 sqrt(3) / 2 and owns two vertices.
     let cells = vertices as f64 / 2.0;
     (cells * 1.5 * 3f64.sqrt() / std::f64::consts::PI).sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_patch_is_a_full_disk_of_the_requested_size() {
+        for target in [1500, 35000] {
+            let r = radius_for_vertices(target);
+            let mesh = hex_disk(r);
+            let n = mesh.vertices.len() as f64;
+            assert!(
+                (n / target as f64 - 1.0).abs() < 0.1,
+                "{target}: {n} vertices"
+            );
+            // Round: as far up and down as left and right.
+            let (lo, hi) = mesh
+                .vertices
+                .iter()
+                .fold((Vec3::ZERO, Vec3::ZERO), |(lo, hi), &v| {
+                    (lo.min(v), hi.max(v))
+                });
+            let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+            assert!((w / h - 1.0).abs() < 0.1, "{target}: {w} x {h}");
+        }
+    }
 }
