@@ -90,22 +90,6 @@ impl SolveArgs {
                 self.eps
             )));
         }
-        // Checked here too, so that the message names the flag (the library names the weight).
-        for (flag, w, required) in [
-            ("--w-angle", self.w_angle, true),
-            ("--w-cons", self.w_cons, true),
-            ("--w-norm", self.w_norm, true),
-            ("--w-close", self.w_close, false),
-            ("--w-boundary", self.w_boundary, false),
-            ("--w-fair", self.w_fair, false),
-        ] {
-            if !w.is_finite() || !(0.0..=1e6).contains(&w) || (required && w == 0.0) {
-                let range = if required { "above 0" } else { "from 0" };
-                return Err(Error::Parameter(format!(
-                    "{flag} {w}: expected a weight {range} up to 1e6"
-                )));
-            }
-        }
         let weights = Weights {
             angle: self.w_angle,
             consistency: self.w_cons,
@@ -114,7 +98,15 @@ impl SolveArgs {
             boundary: self.w_boundary,
             fairness: self.w_fair,
         };
-        weights.validate()?;
+        // Named by flag: the user typed flags, not the library's weight names.
+        weights.validate_as([
+            "--w-angle",
+            "--w-cons",
+            "--w-norm",
+            "--w-close",
+            "--w-boundary",
+            "--w-fair",
+        ])?;
         Ok(OptimizeOptions {
             weights,
             solver: SolverOptions {

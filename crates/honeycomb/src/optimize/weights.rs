@@ -29,29 +29,42 @@ impl Default for Weights {
 }
 
 impl Weights {
-    pub fn validate(&self) -> Result<()> {
-        let all = [
-            ("angle", self.angle),
-            ("consistency", self.consistency),
-            ("normalization", self.normalization),
-            ("closeness", self.closeness),
-            ("boundary", self.boundary),
-            ("fairness", self.fairness),
+    /// The weights with the labels to name them by, in the order angle, consistency,
+    /// normalization, closeness, boundary, fairness. The first three are the honeycomb
+    /// conditions and must be positive; the others may be 0 (off).
+    fn labelled<'a>(&self, labels: [&'a str; 6]) -> [(&'a str, f64, bool); 6] {
+        let w = [
+            self.angle,
+            self.consistency,
+            self.normalization,
+            self.closeness,
+            self.boundary,
+            self.fairness,
         ];
-        for (name, w) in all {
-            if !w.is_finite() || !(0.0..=1e6).contains(&w) {
+        std::array::from_fn(|k| (labels[k], w[k], k < 3))
+    }
+
+    /// Checks every weight, naming an offender by its label in `labels` (see `labelled`).
+    pub fn validate_as(&self, labels: [&str; 6]) -> Result<()> {
+        for (label, w, required) in self.labelled(labels) {
+            if !w.is_finite() || !(0.0..=1e6).contains(&w) || (required && w == 0.0) {
+                let range = if required { "above 0" } else { "from 0" };
                 return Err(Error::Parameter(format!(
-                    "weight {name} = {w}: a weight must be a number between 0 and 1e6"
-                )));
-            }
-        }
-        for (name, w) in &all[..3] {
-            if *w == 0.0 {
-                return Err(Error::Parameter(format!(
-                    "weight {name} = 0: the honeycomb conditions need a positive weight"
+                    "{label} {w}: expected a weight {range} up to 1e6"
                 )));
             }
         }
         Ok(())
+    }
+
+    pub fn validate(&self) -> Result<()> {
+        self.validate_as([
+            "weight angle",
+            "weight consistency",
+            "weight normalization",
+            "weight closeness",
+            "weight boundary",
+            "weight fairness",
+        ])
     }
 }
