@@ -9,11 +9,13 @@ pub use hex_patch::{hex_disk, radius_for_vertices};
 use crate::mesh::PolyMesh;
 
 /// A hexagonal base mesh of about `vertices` vertices lifted onto `shape`, and the design
-/// surface it lies on (a fine triangulation reaching past the patch).
+/// surface it lies on (a triangulation reaching past the patch, with triangles of half a cell
+/// edge, or coarser on large patches where the curvature radius spans hundreds of cells).
 pub fn lifted_hex_patch(shape: Shape, vertices: usize) -> (PolyMesh, PolyMesh) {
     let d = radius_for_vertices(vertices);
     let field = HeightField { shape, d };
     let mut base = hex_disk(d);
     field.lift(&mut base);
-    (base, field.triangulate(160))
+    let cells_across = (2.4 * d / 0.5).ceil() as usize;
+    (base, field.triangulate(cells_across.clamp(32, 160)))
 }
