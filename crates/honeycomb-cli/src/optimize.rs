@@ -4,7 +4,7 @@ use crate::progress::{IterationBar, Output};
 use honeycomb::mesh::{
     nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
 };
-use honeycomb::optimize::{optimize, reference_surface, OptimizeOptions, Weights};
+use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
 use honeycomb::structure::measure;
@@ -166,7 +166,7 @@ pub fn optimize_and_write(
     bar.finish();
     let optimized = result?;
     let seconds = start.elapsed().as_secs_f64();
-    let model_surface = Surface::from_mesh(&reference_surface(base, surface))?;
+    let model_surface = Surface::from_mesh(surface.unwrap_or(base))?;
     let measures = measure(&optimized.honeycomb, &model_surface);
     let report = Report::new(&optimized, &measures, &options.weights, seconds);
     honeycomb::export::write_structure(dir, &optimized.honeycomb, &report)?;

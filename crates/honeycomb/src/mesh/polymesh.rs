@@ -50,15 +50,15 @@ impl PolyMesh {
         c / (self.vertices.len().max(1) as f64)
     }
 
-    /// Each face of more than three vertices replaced by a star of triangles around its
-    /// centroid (an added vertex). Unlike a fan from a corner, the star does not fold a
-    /// non-convex or twisted cell over itself, so it makes a fair surface of a polygon mesh.
-    pub fn star_triangulated(&self) -> PolyMesh {
+    /// A triangulation that makes a fair surface of a polygon mesh: quads split along a
+    /// diagonal, larger faces by a star of triangles around their centroid (an added vertex).
+    /// Unlike a fan from a corner, the star does not fold a non-convex or twisted cell.
+    pub fn star_triangulated(&self) -> (Vec<Vec3>, Vec<[usize; 3]>) {
         let mut vertices = self.vertices.clone();
         let mut faces = Vec::with_capacity(self.faces.len() * 6);
         for f in &self.faces {
-            if f.len() == 3 {
-                faces.push(f.clone());
+            if f.len() <= 4 {
+                faces.extend((1..f.len().saturating_sub(1)).map(|k| [f[0], f[k], f[k + 1]]));
                 continue;
             }
             let mut c = Vec3::ZERO;
@@ -68,21 +68,10 @@ impl PolyMesh {
             vertices.push(c / f.len() as f64);
             let center = vertices.len() - 1;
             for k in 0..f.len() {
-                faces.push(vec![f[k], f[(k + 1) % f.len()], center]);
+                faces.push([f[k], f[(k + 1) % f.len()], center]);
             }
         }
-        PolyMesh::new(vertices, faces)
-    }
-
-    /// Fan triangulation of every face (faces are assumed convex enough for a fan).
-    pub fn triangulated(&self) -> Vec<[usize; 3]> {
-        let mut tris = Vec::with_capacity(self.faces.len() * 2);
-        for f in &self.faces {
-            for k in 1..f.len().saturating_sub(1) {
-                tris.push([f[0], f[k], f[k + 1]]);
-            }
-        }
-        tris
+        (vertices, faces)
     }
 }
 
@@ -112,15 +101,12 @@ mod tests {
             .collect();
         corners[1] = Vec3::new(0.3, 0.2, 0.0);
         let mesh = PolyMesh::new(corners, vec![(0..6).collect()]);
-        let fan = signed_areas(&mesh.vertices, mesh.triangulated().into_iter());
+        let fan = signed_areas(&mesh.vertices, (1..5).map(|k| [0, k, k + 1]));
         assert!(fan.iter().any(|&a| a < 0.0), "the fan should fold: {fan:?}");
-        let star = mesh.star_triangulated();
-        assert_eq!(star.vertices.len(), 7);
-        assert_eq!(star.faces.len(), 6);
-        let areas = signed_areas(
-            &star.vertices,
-            star.faces.iter().map(|f| [f[0], f[1], f[2]]),
-        );
+        let (vertices, triangles) = mesh.star_triangulated();
+        assert_eq!(vertices.len(), 7);
+        assert_eq!(triangles.len(), 6);
+        let areas = signed_areas(&vertices, triangles.into_iter());
         assert!(areas.iter().all(|&a| a > 0.0), "{areas:?}");
     }
 }

@@ -34,15 +34,6 @@ pub struct Optimized {
     pub frame: Frame,
 }
 
-/// The reference surface S as a mesh: the given design surface, or else the base mesh with
-/// its cells star-triangulated (fans from a corner would fold non-convex cells).
-pub fn reference_surface(base: &PolyMesh, surface: Option<&PolyMesh>) -> PolyMesh {
-    match surface {
-        Some(s) => s.clone(),
-        None => base.star_triangulated(),
-    }
-}
-
 /// Optimizes `base` into a honeycomb that follows the design surface `surface` (`None`: the
 /// base mesh itself, whose own zigzag boundary is then not imposed). Both are validated first.
 pub fn optimize(
@@ -59,7 +50,7 @@ pub fn optimize(
     } else {
         weights.boundary = 0.0;
     }
-    let surface = &reference_surface(base, surface);
+    let surface = surface.unwrap_or(base);
     let frame = Frame::of(base);
     let mesh = frame.to_normalized(base);
     let normalized_surface = Surface::from_mesh(&frame.to_normalized(surface))?;

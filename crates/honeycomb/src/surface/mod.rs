@@ -48,7 +48,7 @@ pub struct Surface {
 }
 
 impl Surface {
-    /// Triangulates polygons (fan), orients triangles consistently (flips spread over shared
+    /// Triangulates polygons (`PolyMesh::star_triangulated`), orients triangles consistently (flips spread over shared
     /// edges; each connected piece keeps its majority orientation), computes normals, boundary
     /// loops and the BVH.
     ///
@@ -57,10 +57,9 @@ impl Surface {
     /// non-orientable surfaces.
     pub fn from_mesh(mesh: &PolyMesh) -> Result<Surface> {
         validate(mesh)?;
-        let mut triangles = mesh.triangulated();
+        let (vertices, mut triangles) = mesh.star_triangulated();
         let boundary_edges = orient::orient(&mut triangles)?;
 
-        let vertices = mesh.vertices.clone();
         let bvh = Bvh::build(&mut triangles, |tri| {
             let [a, b, c] = tri.map(|v| vertices[v]);
             (a.min(b).min(c), a.max(b).max(c))
