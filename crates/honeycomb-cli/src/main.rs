@@ -1,5 +1,6 @@
 //! `honeycomb`: the command-line front of the honeycomb library.
 
+mod analyse;
 mod bench;
 mod demo;
 mod optimize;
@@ -25,6 +26,8 @@ enum Command {
     Optimize(optimize::Args),
     /// Build a hex mesh on a built-in surface, optimize it and write a structure directory.
     Demo(demo::Args),
+    /// Spherical image of a structure directory: cell areas, Proposition 1 check.
+    Analyse(analyse::Args),
     /// Time the optimizer on generated hex meshes of growing size (Figure 16 columns).
     Bench(bench::Args),
 }
@@ -35,6 +38,7 @@ fn main() -> ExitCode {
         Command::Optimize(args) => optimize::run(args),
         Command::Demo(args) => demo::run(args),
         Command::Bench(args) => bench::run(args),
+        Command::Analyse(args) => analyse::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

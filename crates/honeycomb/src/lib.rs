@@ -3,6 +3,7 @@
 //!
 //! The library is the product; the `honeycomb` binary is a thin front over it.
 
+pub mod analysis;
 pub mod constraints;
 pub mod error;
 pub mod export;

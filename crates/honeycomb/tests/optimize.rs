@@ -1,6 +1,7 @@
 //! End to end: hex meshes lifted onto analytic surfaces become honeycombs.
 
-use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::generate::{hex_disk, lifted_hex_patch, radius_for_vertices, HeightField, Shape};
+use honeycomb::mesh::PolyMesh;
 use honeycomb::optimize::{optimize, OptimizeOptions};
 use honeycomb::solve::SolverOptions;
 use honeycomb::structure::{measure, quad_planarity, Measures};
@@ -95,4 +96,55 @@ fn planarity_measures_the_distance_of_the_diagonals() {
     // The diagonals' lines are 0.1 / |(-0.1, -2, 0.1)| = 0.04994 apart; mean edge 1.0025.
     let d = quad_planarity(quad);
     assert!((d - 0.04994 / 1.0025).abs() < 1e-4, "{d}");
+}
+
+/// The lifted grid with its vertices moved in the plane by up to `amount` edge lengths (then
+/// lifted again): vertical walls are no longer an exact solution at the start.
+fn jittered(shape: Shape, vertices: usize, amount: f64) -> (PolyMesh, PolyMesh) {
+    let d = radius_for_vertices(vertices);
+    let field = HeightField { shape, d };
+    let mut base = hex_disk(d);
+    for (i, v) in base.vertices.iter_mut().enumerate() {
+        let h = (i as u64).wrapping_mul(0x9E3779B97F4A7C15);
+        let u = ((h >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0;
+        let w = (((h.rotate_left(29)) >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0;
+        v.x += amount * u;
+        v.y += amount * w;
+    }
+    field.lift(&mut base);
+    (base, field.triangulate(120))
+}
+
+#[test]
+fn jittered_grids_become_honeycombs() {
+    // With the vertices moved in the plane, the start is no longer an exact (vertically
+    // extruded) honeycomb: the solver has to move vertices and turn walls.
+    for shape in [Shape::Saddle, Shape::Dome] {
+        let (base, surface) = jittered(shape, 1500, 0.15);
+        let options = OptimizeOptions::default();
+        let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).expect("optimize");
+        let m = measure(&opt.honeycomb, &Surface::from_mesh(&surface).unwrap());
+        let moved = base
+            .vertices
+            .iter()
+            .zip(&opt.honeycomb.base.vertices)
+            .map(|(a, b)| (*a - *b).norm())
+            .fold(0.0, f64::max);
+        println!(
+            "{shape:?}: omega {:.2e} delta {:.2e} moved {moved:.3}",
+            m.omega_max_deg, m.delta_max
+        );
+        assert!(moved > 0.01, "{shape:?}: vertices barely moved ({moved})");
+        assert!(
+            m.omega_max_deg < 0.01,
+            "{shape:?}: omega_max {}",
+            m.omega_max_deg
+        );
+        assert!(m.delta_max < 1e-6, "{shape:?}: delta_max {}", m.delta_max);
+        assert!(
+            m.closeness_max < 0.05,
+            "{shape:?}: closeness_max {}",
+            m.closeness_max
+        );
+    }
 }

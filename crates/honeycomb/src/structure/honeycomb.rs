@@ -3,7 +3,7 @@
 
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 #[derive(Clone, Debug)]
 pub struct Honeycomb {
@@ -84,7 +84,7 @@ impl Honeycomb {
 }
 
 /// `structure.json`: the honeycomb for other tools, in model units.
-#[derive(Serialize)]
+#[derive(Serialize, Deserialize)]
 pub struct StructureJson {
     pub thickness: f64,
     pub vertices: Vec<[f64; 3]>,

@@ -1,0 +1,123 @@
+//! `honeycomb analyse DIR`: the spherical image of a structure directory's honeycomb.
+
+use crate::progress::Output;
+use honeycomb::analysis::spherical_image;
+use honeycomb::export::write_json;
+use honeycomb::geometry::Vec3;
+use honeycomb::mesh::{write_mesh, PolyMesh};
+use honeycomb::structure::StructureJson;
+use honeycomb::{Error, Result};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// A structure directory written by `optimize` or `demo`.
+    pub dir: PathBuf,
+    /// Areas (steradians) within this of 0 count as zero, and Proposition 1 is checked to it.
+    #[arg(long, default_value_t = 1e-3, allow_negative_numbers = true)]
+    pub tolerance: f64,
+    /// Print the analysis as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+    /// Print nothing on stdout.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn read_structure(args: &Args) -> Result<StructureJson> {
+    let path = args.dir.join("structure.json");
+    let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
+        path: path.clone(),
+        source,
+    })?;
+    let s: StructureJson = serde_json::from_str(&text).map_err(|e| Error::Parse {
+        path: path.clone(),
+        line: e.line(),
+        message: format!("not a structure.json: {e}"),
+    })?;
+    let nv = s.node_axes.len();
+    if s.vertices.len() != nv {
+        return Err(Error::Parse {
+            path,
+            line: 0,
+            message: format!("{} vertices but {nv} node axes", s.vertices.len()),
+        });
+    }
+    if let Some((f, _)) = s
+        .faces
+        .iter()
+        .enumerate()
+        .find(|(_, f)| f.len() < 3 || f.iter().any(|&v| v >= nv))
+    {
+        return Err(Error::Parse {
+            path,
+            line: 0,
+            message: format!("cell {f} has fewer than 3 corners or a corner beyond vertex {nv}"),
+        });
+    }
+    if let Some(v) = s
+        .node_axes
+        .iter()
+        .position(|a| !a.iter().all(|x| x.is_finite()) || Vec3::from_slice(a).norm() < 0.5)
+    {
+        return Err(Error::Parse {
+            path,
+            line: 0,
+            message: format!("node axis {v} is not a unit vector"),
+        });
+    }
+    Ok(s)
+}
+
+pub fn run(args: Args) -> Result<()> {
+    if !args.tolerance.is_finite() || args.tolerance <= 0.0 || args.tolerance >= 0.5 {
+        return Err(Error::Parameter(format!(
+            "--tolerance {}: expected a positive area below 0.5 steradians",
+            args.tolerance
+        )));
+    }
+    let output = Output::from_flags(args.quiet, args.json);
+    let s = read_structure(&args)?;
+    let axes: Vec<Vec3> = s
+        .node_axes
+        .iter()
+        .map(|a| Vec3::from_slice(a).normalized())
+        .collect();
+    let image = spherical_image(&s.faces, &axes, args.tolerance);
+    write_json(&args.dir.join("analysis.json"), &image)?;
+    // The image itself, to look at: node axes as points of the unit sphere, cells as faces.
+    write_mesh(
+        &args.dir.join("spherical_image.obj"),
+        &PolyMesh::new(axes, s.faces.clone()),
+    )?;
+    match output {
+        Output::Json => println!(
+            "{}",
+            serde_json::to_string_pretty(&image).map_err(|e| Error::Parameter(e.to_string()))?
+        ),
+        Output::Human => {
+            println!(
+                "{} cells: {} of zero area ({:.0}%), {} violating Proposition 1 (tolerance {:.0e} sr)",
+                image.cells,
+                image.zero_area_cells,
+                100.0 * image.zero_area_share,
+                image.proposition1_violations.len(),
+                image.tolerance
+            );
+            println!("area / (pi/3): cells");
+            for (k, n) in &image.histogram {
+                println!("{k:>13}: {n}");
+            }
+            println!(
+                "largest distance of an area from a multiple of pi/3: {:.1e} sr",
+                image.max_deviation_from_multiple
+            );
+            println!(
+                "wrote analysis.json and spherical_image.obj in {}",
+                args.dir.display()
+            );
+        }
+        Output::Quiet => {}
+    }
+    Ok(())
+}

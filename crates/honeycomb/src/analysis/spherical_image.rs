@@ -1,0 +1,82 @@
+//! The spherical image of a honeycomb (paper section 2): node axes as points on the unit
+//! sphere, cells as spherical polygons. Every cell's oriented area is `2 pi R - sum of turns`,
+//! and with walls at 120 degrees both terms are multiples of pi/3: so is the area, and
+//! Proposition 1 follows (0, or at least pi/3 in absolute value).
+
+use super::spherical_area::oriented_area;
+use crate::geometry::Vec3;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::f64::consts::PI;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct CellImage {
+    pub cell: usize,
+    /// Oriented area (steradians), counted with winding number.
+    pub area: f64,
+    /// The nearest multiple of pi/3, `round(area / (pi/3))`.
+    pub multiple: i64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct SphericalImage {
+    pub cells: usize,
+    /// Cells by the multiple of pi/3 their area is closest to.
+    pub histogram: BTreeMap<i64, usize>,
+    /// Cells with |area| <= tolerance.
+    pub zero_area_cells: usize,
+    /// Share of zero-area cells: high for the curve-like images of Property 2.
+    pub zero_area_share: f64,
+    /// Tolerance (steradians) used for "zero" and for the violations below.
+    pub tolerance: f64,
+    /// Cells with tolerance < |area| < pi/3 - tolerance (Proposition 1 says there are none).
+    pub proposition1_violations: Vec<usize>,
+    /// Largest distance of an area from its nearest multiple of pi/3.
+    pub max_deviation_from_multiple: f64,
+    #[serde(skip)]
+    pub per_cell: Vec<CellImage>,
+}
+
+pub fn spherical_image(faces: &[Vec<usize>], axes: &[Vec3], tolerance: f64) -> SphericalImage {
+    let third = PI / 3.0;
+    let per_cell: Vec<CellImage> = faces
+        .iter()
+        .enumerate()
+        .map(|(cell, f)| {
+            let points: Vec<Vec3> = f.iter().map(|&v| axes[v]).collect();
+            let area = oriented_area(&points);
+            CellImage {
+                cell,
+                area,
+                multiple: (area / third).round() as i64,
+            }
+        })
+        .collect();
+    let mut histogram = BTreeMap::new();
+    for c in &per_cell {
+        *histogram.entry(c.multiple).or_insert(0) += 1;
+    }
+    let zero_area_cells = per_cell
+        .iter()
+        .filter(|c| c.area.abs() <= tolerance)
+        .count();
+    let proposition1_violations = per_cell
+        .iter()
+        .filter(|c| c.area.abs() > tolerance && c.area.abs() < third - tolerance)
+        .map(|c| c.cell)
+        .collect();
+    let max_deviation_from_multiple = per_cell
+        .iter()
+        .map(|c| (c.area - c.multiple as f64 * third).abs())
+        .fold(0.0, f64::max);
+    SphericalImage {
+        cells: per_cell.len(),
+        histogram,
+        zero_area_cells,
+        zero_area_share: zero_area_cells as f64 / per_cell.len().max(1) as f64,
+        tolerance,
+        proposition1_violations,
+        max_deviation_from_multiple,
+        per_cell,
+    }
+}
