@@ -54,6 +54,10 @@ pub struct SolveArgs {
     /// Weight of opposite-wall fairness in hexagons (fades with the regularization).
     #[arg(long, default_value_t = Weights::default().fairness, allow_negative_numbers = true)]
     pub w_fair: f64,
+    /// Guide the node axes towards the surface normals in the first iterations, so that walls
+    /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
+    #[arg(long, default_value_t = Weights::default().guide, allow_negative_numbers = true)]
+    pub w_guide: f64,
     /// Initial regularization eps (normalized frame); it shrinks as steps succeed.
     #[arg(long, default_value_t = SolverOptions::default().eps, allow_negative_numbers = true)]
     pub eps: f64,
@@ -97,6 +101,7 @@ impl SolveArgs {
             closeness: self.w_close,
             boundary: self.w_boundary,
             fairness: self.w_fair,
+            guide: self.w_guide,
         };
         // Named by flag: the user typed flags, not the library's weight names.
         weights.validate_as([
@@ -106,6 +111,7 @@ impl SolveArgs {
             "--w-close",
             "--w-boundary",
             "--w-fair",
+            "--w-guide",
         ])?;
         Ok(OptimizeOptions {
             weights,

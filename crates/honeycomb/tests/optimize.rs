@@ -2,7 +2,7 @@
 
 use honeycomb::generate::{hex_disk, lifted_hex_patch, radius_for_vertices, HeightField, Shape};
 use honeycomb::mesh::PolyMesh;
-use honeycomb::optimize::{optimize, OptimizeOptions};
+use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
 use honeycomb::solve::SolverOptions;
 use honeycomb::structure::{measure, quad_planarity, Measures};
 use honeycomb::surface::Surface;
@@ -147,4 +147,54 @@ fn jittered_grids_become_honeycombs() {
             m.closeness_max
         );
     }
+}
+
+#[test]
+fn guided_axes_follow_the_normals_of_a_cylinder() {
+    // A cylinder is developable: its normals can be node axes (paper Property 3), and the guide
+    // finds that honeycomb instead of the vertical extrusion.
+    let (base, surface) = lifted_hex_patch(Shape::Cylinder, 1500);
+    let options = OptimizeOptions {
+        weights: Weights {
+            guide: 3.0,
+            fairness: 0.0,
+            ..Weights::default()
+        },
+        solver: SolverOptions {
+            max_iterations: 15,
+            ..SolverOptions::default()
+        },
+        ..OptimizeOptions::default()
+    };
+    let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).expect("optimize");
+    let s = Surface::from_mesh(&surface).unwrap();
+    let m = measure(&opt.honeycomb, &s);
+    let worst = opt
+        .honeycomb
+        .base
+        .vertices
+        .iter()
+        .zip(&opt.honeycomb.axes)
+        .map(|(&v, &a)| a.dot(s.normal_at(v)).clamp(-1.0, 1.0).acos().to_degrees())
+        .fold(0.0, f64::max);
+    let tilt = opt
+        .honeycomb
+        .axes
+        .iter()
+        .map(|a| a.z.acos().to_degrees())
+        .fold(0.0, f64::max);
+    println!(
+        "omega {:.2e} axis-to-normal max {worst:.3} deg, tilt {tilt:.1}",
+        m.omega_max_deg
+    );
+    assert!(m.omega_max_deg < 0.01, "omega_max {}", m.omega_max_deg);
+    assert!(m.delta_max < 1e-6, "delta_max {}", m.delta_max);
+    assert!(
+        worst < 1.0,
+        "an axis is {worst} deg from the surface normal"
+    );
+    assert!(
+        tilt > 30.0,
+        "the axes should tilt with the cylinder, max tilt {tilt}"
+    );
 }

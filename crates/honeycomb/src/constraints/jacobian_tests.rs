@@ -29,7 +29,11 @@ fn every_family_matches_finite_differences() {
     for (i, xi) in x.iter_mut().enumerate() {
         *xi += 0.05 * jitter(i);
     }
-    let mut fams = families(&mesh, &conn, &surface, &Weights::default());
+    let weights = Weights {
+        guide: 1.0,
+        ..Weights::default()
+    };
+    let mut fams = families(&mesh, &conn, &surface, &weights);
     let names: Vec<String> = fams.iter().map(|c| c.name().to_string()).collect();
     for expected in [
         "normalization",
@@ -38,6 +42,7 @@ fn every_family_matches_finite_differences() {
         "node_120_valence2",
         "closeness",
         "fairness_opposite_walls",
+        "guide_axes_along_normals",
     ] {
         assert!(
             names.iter().any(|n| n == expected),

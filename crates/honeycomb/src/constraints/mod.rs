@@ -7,6 +7,7 @@ mod layout;
 mod node_angle;
 mod normalization;
 mod opposite_walls;
+mod prescribed_axes;
 mod wall_consistency;
 
 pub use boundary_curve::BoundaryCurve;
@@ -15,6 +16,7 @@ pub use layout::Layout;
 pub use node_angle::{Node2, Node3};
 pub use normalization::Normalization;
 pub use opposite_walls::OppositeWalls;
+pub use prescribed_axes::PrescribedAxes;
 pub use wall_consistency::WallConsistency;
 
 #[cfg(test)]

@@ -3,11 +3,12 @@
 
 use super::Weights;
 use crate::constraints::{
-    BoundaryCurve, Closeness, Layout, Node2, Node3, Normalization, OppositeWalls, WallConsistency,
+    BoundaryCurve, Closeness, Layout, Node2, Node3, Normalization, OppositeWalls, PrescribedAxes,
+    WallConsistency,
 };
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
-use crate::solve::Constraint;
+use crate::solve::{Constraint, Role};
 use crate::surface::Surface;
 
 /// Boundary vertices closer than this (normalized units) to S's boundary are kept on it.
@@ -121,6 +122,20 @@ pub fn families<'a>(
             layout,
             pairs: opposite_wall_pairs(mesh, conn),
             weight: weights.fairness,
+        }));
+    }
+    if weights.guide > 0.0 {
+        let ends = (0..mesh.vertices.len())
+            .flat_map(|v| {
+                let a = surface.normal_at(mesh.vertices[v]);
+                node_edges(v).map(move |(e, s)| (e, s, a))
+            })
+            .collect();
+        families.push(Box::new(PrescribedAxes {
+            layout,
+            ends,
+            weight: weights.guide,
+            role: Role::Guide,
         }));
     }
     families.retain(|c| c.num_rows() > 0);

@@ -13,6 +13,10 @@ pub struct Weights {
     /// Opposite-wall fairness at the initial regularization; it fades with `sqrt(eps)`, so it
     /// shapes the result without biasing the honeycomb conditions.
     pub fairness: f64,
+    /// Guide of the node axes towards the surface normals (walls across the surface) for the
+    /// first iterations; it fades by 0.3 per iteration. Off (0) by default: with it, the
+    /// opposite-wall fairness (which favours parallel walls) is best turned off.
+    pub guide: f64,
 }
 
 impl Default for Weights {
@@ -24,15 +28,16 @@ impl Default for Weights {
             closeness: 1.0,
             boundary: 1.0,
             fairness: 3.0,
+            guide: 0.0,
         }
     }
 }
 
 impl Weights {
     /// The weights with the labels to name them by, in the order angle, consistency,
-    /// normalization, closeness, boundary, fairness. The first three are the honeycomb
+    /// normalization, closeness, boundary, fairness, guide. The first three are the honeycomb
     /// conditions and must be positive; the others may be 0 (off).
-    fn labelled<'a>(&self, labels: [&'a str; 6]) -> [(&'a str, f64, bool); 6] {
+    fn labelled<'a>(&self, labels: [&'a str; 7]) -> [(&'a str, f64, bool); 7] {
         let w = [
             self.angle,
             self.consistency,
@@ -40,12 +45,13 @@ impl Weights {
             self.closeness,
             self.boundary,
             self.fairness,
+            self.guide,
         ];
         std::array::from_fn(|k| (labels[k], w[k], k < 3))
     }
 
     /// Checks every weight, naming an offender by its label in `labels` (see `labelled`).
-    pub fn validate_as(&self, labels: [&str; 6]) -> Result<()> {
+    pub fn validate_as(&self, labels: [&str; 7]) -> Result<()> {
         for (label, w, required) in self.labelled(labels) {
             if !w.is_finite() || !(0.0..=1e6).contains(&w) || (required && w == 0.0) {
                 let range = if required { "above 0" } else { "from 0" };
@@ -65,6 +71,7 @@ impl Weights {
             "weight closeness",
             "weight boundary",
             "weight fairness",
+            "weight guide",
         ])
     }
 }

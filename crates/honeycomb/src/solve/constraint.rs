@@ -12,6 +12,8 @@ pub enum Role {
     Condition,
     /// A fairness term: part of the regularization, so its weight fades with it.
     Fairness,
+    /// A guide for the first iterations: its weight fades by a fixed factor per iteration.
+    Guide,
 }
 
 pub trait Constraint: Send + Sync {

@@ -73,6 +73,8 @@ pub struct SolveReport {
     pub history: Vec<IterationInfo>,
 }
 
+/// A guide's weight is multiplied by this after every iteration.
+const GUIDE_FADE: f64 = 0.3;
 /// Regularization decay after a full step that lowered the energy: with a small eps the step is close to
 /// the minimum-norm Gauss-Newton step, which converges where a fixed eps stalls on the
 /// low-frequency modes (singular values below sqrt(eps)).
@@ -94,6 +96,7 @@ pub struct GuidedProjection<'a> {
     residuals: Vec<Vec<f64>>,
     jacobians: Vec<Vec<f64>>,
     seconds_symbolic: f64,
+    iteration: usize,
 }
 
 impl<'a> GuidedProjection<'a> {
@@ -114,6 +117,7 @@ impl<'a> GuidedProjection<'a> {
             residuals,
             jacobians,
             seconds_symbolic: start.elapsed().as_secs_f64(),
+            iteration: 0,
         })
     }
 
@@ -127,6 +131,7 @@ impl<'a> GuidedProjection<'a> {
     fn weight(&self, f: usize, eps: f64, eps0: f64) -> f64 {
         let c = &self.families[f];
         match c.role() {
+            Role::Guide => c.weight() * GUIDE_FADE.powi(self.iteration as i32),
             Role::Condition => c.weight(),
             Role::Fairness => c.weight() * (eps / eps0).sqrt(),
         }
@@ -171,6 +176,7 @@ impl<'a> GuidedProjection<'a> {
         let mut converged = false;
 
         for iteration in 0..opts.max_iterations {
+            self.iteration = iteration;
             let t = Instant::now();
             for c in &mut self.families {
                 c.refresh(x);
