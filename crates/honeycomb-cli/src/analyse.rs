@@ -2,10 +2,8 @@
 
 use crate::progress::Output;
 use honeycomb::analysis::spherical_image;
-use honeycomb::export::write_json;
-use honeycomb::geometry::Vec3;
+use honeycomb::export::{read_structure, write_json};
 use honeycomb::mesh::{write_mesh, PolyMesh};
-use honeycomb::structure::StructureJson;
 use honeycomb::{Error, Result};
 use std::path::PathBuf;
 
@@ -24,51 +22,6 @@ pub struct Args {
     pub quiet: bool,
 }
 
-fn read_structure(args: &Args) -> Result<StructureJson> {
-    let path = args.dir.join("structure.json");
-    let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
-        path: path.clone(),
-        source,
-    })?;
-    let s: StructureJson = serde_json::from_str(&text).map_err(|e| Error::Parse {
-        path: path.clone(),
-        line: e.line(),
-        message: format!("not a structure.json: {e}"),
-    })?;
-    let nv = s.node_axes.len();
-    if s.vertices.len() != nv {
-        return Err(Error::Parse {
-            path,
-            line: 0,
-            message: format!("{} vertices but {nv} node axes", s.vertices.len()),
-        });
-    }
-    if let Some((f, _)) = s
-        .faces
-        .iter()
-        .enumerate()
-        .find(|(_, f)| f.len() < 3 || f.iter().any(|&v| v >= nv))
-    {
-        return Err(Error::Parse {
-            path,
-            line: 0,
-            message: format!("cell {f} has fewer than 3 corners or a corner beyond vertex {nv}"),
-        });
-    }
-    if let Some(v) = s
-        .node_axes
-        .iter()
-        .position(|a| !a.iter().all(|x| x.is_finite()) || Vec3::from_slice(a).norm() < 0.5)
-    {
-        return Err(Error::Parse {
-            path,
-            line: 0,
-            message: format!("node axis {v} is not a unit vector"),
-        });
-    }
-    Ok(s)
-}
-
 pub fn run(args: Args) -> Result<()> {
     if !args.tolerance.is_finite() || args.tolerance <= 0.0 || args.tolerance >= 0.5 {
         return Err(Error::Parameter(format!(
@@ -77,18 +30,13 @@ pub fn run(args: Args) -> Result<()> {
         )));
     }
     let output = Output::from_flags(args.quiet, args.json);
-    let s = read_structure(&args)?;
-    let axes: Vec<Vec3> = s
-        .node_axes
-        .iter()
-        .map(|a| Vec3::from_slice(a).normalized())
-        .collect();
-    let image = spherical_image(&s.faces, &axes, args.tolerance);
+    let (h, _) = read_structure(&args.dir)?;
+    let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);
     write_json(&args.dir.join("analysis.json"), &image)?;
     // The image itself, to look at: node axes as points of the unit sphere, cells as faces.
     write_mesh(
         &args.dir.join("spherical_image.obj"),
-        &PolyMesh::new(axes, s.faces.clone()),
+        &PolyMesh::new(h.axes.clone(), h.base.faces.clone()),
     )?;
     match output {
         Output::Json => println!(

@@ -3,6 +3,7 @@
 mod analyse;
 mod bench;
 mod demo;
+mod edit;
 mod optimize;
 mod progress;
 
@@ -26,6 +27,8 @@ enum Command {
     Optimize(optimize::Args),
     /// Build a hex mesh on a built-in surface, optimize it and write a structure directory.
     Demo(demo::Args),
+    /// Edit a structure directory by wall translations (resize a cell).
+    Edit(edit::Args),
     /// Spherical image of a structure directory: cell areas, Proposition 1 check.
     Analyse(analyse::Args),
     /// Time the optimizer on generated hex meshes of growing size (Figure 16 columns).
@@ -39,6 +42,7 @@ fn main() -> ExitCode {
         Command::Demo(args) => demo::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Analyse(args) => analyse::run(args),
+        Command::Edit(args) => edit::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -5,6 +5,7 @@
 
 pub mod analysis;
 pub mod constraints;
+pub mod edit;
 pub mod error;
 pub mod export;
 pub mod generate;

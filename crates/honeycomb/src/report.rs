@@ -2,7 +2,7 @@
 
 use crate::optimize::{Optimized, Weights};
 use crate::solve::{FamilyResidual, IterationInfo};
-use crate::structure::Measures;
+use crate::structure::{Honeycomb, Measures};
 use serde::Serialize;
 
 #[derive(Clone, Debug, Serialize)]
@@ -70,6 +70,11 @@ impl Report {
     /// Largest wall non-planarity of a structure we call a honeycomb.
     pub const DELTA_TOLERANCE: f64 = 1e-3;
 
+    /// Whether measures meet the honeycomb tolerances.
+    pub fn within_tolerances(m: &Measures) -> bool {
+        m.omega_max_deg <= Self::OMEGA_TOLERANCE_DEG && m.delta_max <= Self::DELTA_TOLERANCE
+    }
+
     pub const FIGURE16_HEADER: &'static str =
         "   |V|    |E|  w_ang w_con w_nrm  #It  omega_max  omega_avg  delta_max  delta_avg   T (s)";
 
@@ -89,5 +94,34 @@ impl Report {
             self.measures.delta_avg,
             self.seconds
         )
+    }
+}
+
+/// `report.json` of an edited structure.
+#[derive(Clone, Debug, Serialize)]
+pub struct EditReport {
+    pub operation: String,
+    pub vertices: usize,
+    pub edges: usize,
+    pub faces: usize,
+    /// The realized structure meets the honeycomb tolerances.
+    pub honeycomb: bool,
+    /// omega, delta and closeness (to the structure before the edit) as top-level keys.
+    #[serde(flatten)]
+    pub measures: Measures,
+    pub thickness: f64,
+}
+
+impl EditReport {
+    pub fn new(h: &Honeycomb, measures: Measures, operation: String) -> EditReport {
+        EditReport {
+            operation,
+            vertices: h.base.vertices.len(),
+            edges: h.edges.len(),
+            faces: h.base.faces.len(),
+            honeycomb: Report::within_tolerances(&measures),
+            measures,
+            thickness: h.thickness,
+        }
     }
 }

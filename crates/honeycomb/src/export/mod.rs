@@ -3,9 +3,10 @@
 //! reader never sees a half-written file.
 
 use crate::error::{Error, Result};
+use crate::geometry::Vec3;
 use crate::mesh::{write_atomically, write_mesh};
-use crate::report::Report;
-use crate::structure::Honeycomb;
+use crate::mesh::{Connectivity, PolyMesh};
+use crate::structure::{Honeycomb, StructureJson};
 use std::path::Path;
 
 pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
@@ -15,7 +16,11 @@ pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
     })
 }
 
-pub fn write_structure(dir: &Path, honeycomb: &Honeycomb, report: &Report) -> Result<()> {
+pub fn write_structure(
+    dir: &Path,
+    honeycomb: &Honeycomb,
+    report: &impl serde::Serialize,
+) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|source| Error::Io {
         path: dir.to_path_buf(),
         source,
@@ -25,4 +30,53 @@ pub fn write_structure(dir: &Path, honeycomb: &Honeycomb, report: &Report) -> Re
     write_mesh(&dir.join("walls.obj"), &honeycomb.walls())?;
     write_json(&dir.join("structure.json"), &honeycomb.to_json())?;
     write_json(&dir.join("report.json"), report)
+}
+
+/// Reads `DIR/structure.json` back into a honeycomb, checking that it is one of ours.
+pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
+    let path = dir.join("structure.json");
+    let bad = |line: usize, message: String| Error::Parse {
+        path: path.clone(),
+        line,
+        message,
+    };
+    let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
+        path: path.clone(),
+        source,
+    })?;
+    let s: StructureJson = serde_json::from_str(&text)
+        .map_err(|e| bad(e.line(), format!("not a structure.json: {e}")))?;
+    let nv = s.vertices.len();
+    if s.node_axes.len() != nv || s.offset_vertices.len() != nv {
+        return Err(bad(
+            0,
+            format!(
+                "{nv} vertices but {} node axes and {} offset vertices",
+                s.node_axes.len(),
+                s.offset_vertices.len()
+            ),
+        ));
+    }
+    if let Some(v) = s.node_axes.iter().position(|a| {
+        !a.iter().all(|x| x.is_finite()) || (Vec3::from_slice(a).norm() - 1.0).abs() > 1e-6
+    }) {
+        return Err(bad(0, format!("node axis {v} is not a unit vector")));
+    }
+    if !s.thickness.is_finite() || s.thickness <= 0.0 {
+        return Err(bad(
+            0,
+            format!("thickness {} is not a positive length", s.thickness),
+        ));
+    }
+    let vertices: Vec<Vec3> = s.vertices.iter().map(|p| Vec3::from_slice(p)).collect();
+    if let Some(v) = vertices.iter().position(|p| !p.is_finite()) {
+        return Err(bad(0, format!("vertex {v} is not finite")));
+    }
+    let base = PolyMesh::new(vertices, s.faces.clone());
+    let conn = Connectivity::build(&base).map_err(|e| bad(0, e.to_string()))?;
+    if conn.edges != s.edges {
+        return Err(bad(0, "the edges do not match the faces".into()));
+    }
+    let axes = s.node_axes.iter().map(|a| Vec3::from_slice(a)).collect();
+    Ok((Honeycomb::new(base, &conn, axes, s.thickness), conn))
 }

@@ -1,0 +1,81 @@
+//! `honeycomb edit DIR <operation> -o OUT`: edits that keep a honeycomb a honeycomb.
+
+use crate::progress::Output;
+use honeycomb::edit::resize_cell;
+use honeycomb::export::{read_structure, write_structure};
+use honeycomb::report::{EditReport, Report};
+use honeycomb::structure::measure;
+use honeycomb::surface::Surface;
+use honeycomb::{Error, Result};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// A structure directory written by `optimize`, `demo` or `edit`.
+    pub dir: PathBuf,
+    #[command(subcommand)]
+    pub operation: Operation,
+    /// Output structure directory (a new one; DIR is left as it is).
+    #[arg(short, long, global = true)]
+    pub output: Option<PathBuf>,
+    /// Print the report as JSON on stdout.
+    #[arg(long, global = true)]
+    pub json: bool,
+    /// Print nothing on stdout.
+    #[arg(short, long, global = true)]
+    pub quiet: bool,
+}
+
+#[derive(clap::Subcommand)]
+pub enum Operation {
+    /// Move the walls of one cell inwards (paper Fig. 13); the rest stays exactly as it was.
+    Resize {
+        /// The cell (face index of base.obj, from 0).
+        #[arg(long)]
+        cell: usize,
+        /// Distance in model units; negative grows the cell.
+        #[arg(long, allow_negative_numbers = true)]
+        by: f64,
+    },
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let out = args
+        .output
+        .clone()
+        .ok_or_else(|| Error::Parameter("edit needs -o OUT, a new structure directory".into()))?;
+    let (h, conn) = read_structure(&args.dir)?;
+    let (edited, operation) = match args.operation {
+        Operation::Resize { cell, by } => (
+            resize_cell(&h, &conn, cell, by)?,
+            format!("resize cell {cell} by {by}"),
+        ),
+    };
+    // Closeness is measured to the structure before the edit.
+    let before = Surface::from_mesh(&h.base)?;
+    let measures = measure(&edited, &before);
+    let report = EditReport::new(&edited, measures, operation);
+    write_structure(&out, &edited, &report)?;
+    match Output::from_flags(args.quiet, args.json) {
+        Output::Json => println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| Error::Parameter(e.to_string()))?
+        ),
+        Output::Human => {
+            println!(
+                "{}: omega_max {:.2e} deg, delta_max {:.1e}",
+                report.operation, report.measures.omega_max_deg, report.measures.delta_max
+            );
+            println!("wrote {}", out.display());
+        }
+        Output::Quiet => {}
+    }
+    if !report.honeycomb {
+        return Err(Error::Solver(format!(
+            "the edited structure is not a honeycomb (tolerance {} deg, {:.0e}); was the input one?",
+            Report::OMEGA_TOLERANCE_DEG,
+            Report::DELTA_TOLERANCE
+        )));
+    }
+    Ok(())
+}

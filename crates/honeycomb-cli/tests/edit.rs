@@ -1,0 +1,92 @@
+//! `honeycomb edit DIR resize --cell K --by T -o OUT`.
+
+mod common;
+
+use common::{assert_clean_failure, parse_json, run, TempDir};
+
+#[test]
+fn resize_writes_a_new_honeycomb_and_refuses_nonsense() {
+    let tmp = TempDir::new("edit-resize");
+    let (src, out) = (tmp.join("src"), tmp.join("out"));
+    assert!(run(["demo", "-q", "-o", src.to_str().unwrap()])
+        .status
+        .success());
+    let ok = run([
+        "edit",
+        src.to_str().unwrap(),
+        "resize",
+        "--cell",
+        "300",
+        "--by",
+        "0.2",
+        "-q",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok.status.success(), "{}", common::stderr(&ok));
+    for f in [
+        "base.obj",
+        "offset.obj",
+        "walls.obj",
+        "structure.json",
+        "report.json",
+    ] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let report = parse_json(
+        &std::fs::read_to_string(out.join("report.json")).unwrap(),
+        "report",
+    );
+    assert_eq!(report["honeycomb"], true, "{report}");
+    assert!(report["omega_max_deg"].as_f64().unwrap() < 1e-6, "{report}");
+    assert!(report["delta_max"].as_f64().unwrap() < 1e-9, "{report}");
+    // Only the six corners of the cell moved off the old structure.
+    let moved = std::fs::read_to_string(out.join("base.obj"))
+        .unwrap()
+        .lines()
+        .zip(
+            std::fs::read_to_string(src.join("base.obj"))
+                .unwrap()
+                .lines(),
+        )
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(moved, 6);
+
+    let too_far = tmp.join("too-far");
+    let bad = run([
+        "edit",
+        src.to_str().unwrap(),
+        "resize",
+        "--cell",
+        "300",
+        "--by",
+        "5",
+        "-o",
+        too_far.to_str().unwrap(),
+    ]);
+    assert_clean_failure(&bad, &["cell 300", "turns edge"], None);
+    assert!(!too_far.exists());
+    let bad = run([
+        "edit",
+        src.to_str().unwrap(),
+        "resize",
+        "--cell",
+        "9999",
+        "--by",
+        "0.1",
+        "-o",
+        too_far.to_str().unwrap(),
+    ]);
+    assert_clean_failure(&bad, &["cell 9999", "does not exist"], None);
+    let bad = run([
+        "edit",
+        src.to_str().unwrap(),
+        "resize",
+        "--cell",
+        "3",
+        "--by",
+        "0.1",
+    ]);
+    assert_clean_failure(&bad, &["-o"], None);
+}

@@ -1,0 +1,130 @@
+//! Wall translations keep a honeycomb a honeycomb.
+
+use honeycomb::edit::{resize_cell, translate_walls};
+use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::mesh::Connectivity;
+use honeycomb::optimize::{optimize, OptimizeOptions};
+use honeycomb::structure::{measure, Honeycomb};
+use honeycomb::surface::Surface;
+
+fn honeycomb() -> (Honeycomb, Connectivity, Surface) {
+    let (base, surface) = lifted_hex_patch(Shape::Dome, 600);
+    let opt = optimize(
+        &base,
+        Some(&surface),
+        &OptimizeOptions::default(),
+        &mut |_| {},
+    )
+    .unwrap();
+    (
+        opt.honeycomb,
+        opt.connectivity,
+        Surface::from_mesh(&surface).unwrap(),
+    )
+}
+
+/// A hexagon all of whose corners are trivalent, nearest the middle.
+fn middle_cell(h: &Honeycomb, conn: &Connectivity) -> usize {
+    let c = h.base.centroid();
+    (0..h.base.faces.len())
+        .filter(|&f| h.base.faces[f].len() == 6)
+        .filter(|&f| h.base.faces[f].iter().all(|&v| conn.valence(v) == 3))
+        .min_by(|&a, &b| {
+            let d = |f: usize| {
+                (h.base.faces[f]
+                    .iter()
+                    .fold(c * 0.0, |s, &v| s + h.base.vertices[v])
+                    / 6.0
+                    - c)
+                    .norm()
+            };
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap()
+}
+
+fn perimeter(h: &Honeycomb, f: usize) -> f64 {
+    let face = &h.base.faces[f];
+    (0..face.len())
+        .map(|k| (h.base.vertices[face[k]] - h.base.vertices[face[(k + 1) % face.len()]]).norm())
+        .sum()
+}
+
+#[test]
+fn resizing_a_cell_keeps_every_node_and_wall() {
+    let (h, conn, s) = honeycomb();
+    let cell = middle_cell(&h, &conn);
+    let before = measure(&h, &s);
+    let resized = resize_cell(&h, &conn, cell, 0.2).unwrap();
+    let after = measure(&resized, &s);
+    let corners = &h.base.faces[cell];
+    let mut moved = 0;
+    for v in 0..h.base.vertices.len() {
+        let d = (resized.base.vertices[v] - h.base.vertices[v]).norm();
+        if corners.contains(&v) {
+            assert!(d > 0.1, "corner {v} moved only {d}");
+            moved += 1;
+        } else {
+            assert_eq!(d, 0.0, "vertex {v} is not a corner of the cell but moved");
+            assert_eq!(
+                after.omega_per_node[v], before.omega_per_node[v],
+                "node {v}"
+            );
+        }
+        assert!(
+            (after.omega_per_node[v] - before.omega_per_node[v]).abs() < 1e-9,
+            "node {v}"
+        );
+    }
+    assert_eq!(moved, 6);
+    assert!(after.delta_max < 1e-9, "delta_max {}", after.delta_max);
+    // The axes keep their directions, and the cell shrank: its walls moved 0.2 inwards, so each
+    // side shortens by 2 * 0.2 / tan(60 deg).
+    assert_eq!(resized.axes, h.axes);
+    let shrink = perimeter(&h, cell) - perimeter(&resized, cell);
+    let expected = 6.0 * 2.0 * 0.2 / 3f64.sqrt();
+    assert!(
+        (shrink - expected).abs() < 0.05 * expected,
+        "{shrink} vs {expected}"
+    );
+    // Growing back restores the honeycomb.
+    let back = resize_cell(&resized, &conn, cell, -0.2).unwrap();
+    let err = back
+        .base
+        .vertices
+        .iter()
+        .zip(&h.base.vertices)
+        .map(|(a, b)| (*a - *b).norm())
+        .fold(0.0, f64::max);
+    assert!(err < 1e-9, "{err}");
+}
+
+#[test]
+fn a_translation_breaking_the_sum_rule_is_refused_with_its_nodes() {
+    let (h, conn, _) = honeycomb();
+    // Move a single interior wall: both of its end nodes lose their common axis.
+    let e = (0..h.edges.len())
+        .find(|&e| h.edges[e].iter().all(|&v| conn.valence(v) == 3))
+        .unwrap();
+    let mut lambda = vec![0.0; h.edges.len()];
+    lambda[e] = 0.1;
+    let err = translate_walls(&h, &conn, &lambda).unwrap_err().to_string();
+    let [a, b] = h.edges[e];
+    assert!(err.contains("2 node(s)"), "{err}");
+    assert!(
+        err.contains(&format!("node {a} ")) && err.contains(&format!("node {b} ")),
+        "{err}"
+    );
+}
+
+#[test]
+fn an_inverting_resize_and_a_missing_cell_are_refused() {
+    let (h, conn, _) = honeycomb();
+    let cell = middle_cell(&h, &conn);
+    let err = resize_cell(&h, &conn, cell, 3.0).unwrap_err().to_string();
+    assert!(err.contains("turns edge"), "{err}");
+    let err = resize_cell(&h, &conn, 1_000_000, 0.1)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("does not exist"), "{err}");
+}
