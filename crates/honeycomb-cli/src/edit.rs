@@ -1,7 +1,7 @@
 //! `honeycomb edit DIR <operation> -o OUT`: edits that keep a honeycomb a honeycomb.
 
 use crate::progress::Output;
-use honeycomb::edit::resize_cell;
+use honeycomb::edit::{resize_cell, subdivide};
 use honeycomb::export::{read_structure, write_structure};
 use honeycomb::report::{EditReport, Report};
 use honeycomb::structure::measure;
@@ -37,6 +37,13 @@ pub enum Operation {
         #[arg(long, allow_negative_numbers = true)]
         by: f64,
     },
+    /// Shrink every cell; the space freed along each interior wall becomes a new cell
+    /// (paper Fig. 14): same angles, same spherical image, about 4x the cells.
+    Subdivide {
+        /// Size of the shrunken cells relative to the old ones (0.5: cells of about one size).
+        #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
+        shrink: f64,
+    },
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -50,6 +57,11 @@ pub fn run(args: Args) -> Result<()> {
             resize_cell(&h, &conn, cell, by)?,
             format!("resize cell {cell} by {by}"),
         ),
+        Operation::Subdivide { shrink } => {
+            let (sub, _) = subdivide(&h, &conn, shrink)?;
+            let cells = format!("{} cells -> {}", h.base.faces.len(), sub.base.faces.len());
+            (sub, format!("subdivide with shrink {shrink}: {cells}"))
+        }
     };
     // Closeness is measured to the structure before the edit.
     let before = Surface::from_mesh(&h.base)?;

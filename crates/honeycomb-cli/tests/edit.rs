@@ -90,3 +90,48 @@ fn resize_writes_a_new_honeycomb_and_refuses_nonsense() {
     ]);
     assert_clean_failure(&bad, &["-o"], None);
 }
+
+#[test]
+fn subdivide_writes_four_times_the_cells() {
+    let tmp = TempDir::new("edit-subdivide");
+    let (src, out) = (tmp.join("src"), tmp.join("out"));
+    assert!(run([
+        "demo",
+        "--vertices",
+        "600",
+        "-q",
+        "-o",
+        src.to_str().unwrap()
+    ])
+    .status
+    .success());
+    let ok = run([
+        "edit",
+        src.to_str().unwrap(),
+        "subdivide",
+        "-q",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok.status.success(), "{}", common::stderr(&ok));
+    let read = |d: &std::path::Path| {
+        parse_json(
+            &std::fs::read_to_string(d.join("report.json")).unwrap(),
+            "report",
+        )
+    };
+    let (before, after) = (read(&src), read(&out));
+    let ratio = after["faces"].as_f64().unwrap() / before["faces"].as_f64().unwrap();
+    assert!(ratio > 3.5 && ratio < 4.0, "{ratio}");
+    assert_eq!(after["honeycomb"], true);
+    let bad = run([
+        "edit",
+        src.to_str().unwrap(),
+        "subdivide",
+        "--shrink",
+        "2",
+        "-o",
+        tmp.join("x").to_str().unwrap(),
+    ]);
+    assert_clean_failure(&bad, &["shrink 2"], None);
+}

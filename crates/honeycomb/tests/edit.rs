@@ -1,9 +1,10 @@
 //! Wall translations keep a honeycomb a honeycomb.
 
-use honeycomb::edit::{resize_cell, translate_walls};
+use honeycomb::edit::{resize_cell, subdivide, translate_walls};
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::mesh::Connectivity;
-use honeycomb::optimize::{optimize, OptimizeOptions};
+use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
+use honeycomb::solve::SolverOptions;
 use honeycomb::structure::{measure, Honeycomb};
 use honeycomb::surface::Surface;
 
@@ -16,6 +17,29 @@ fn honeycomb() -> (Honeycomb, Connectivity, Surface) {
         &mut |_| {},
     )
     .unwrap();
+    (
+        opt.honeycomb,
+        opt.connectivity,
+        Surface::from_mesh(&surface).unwrap(),
+    )
+}
+
+/// A honeycomb whose axes all differ: walls across a cylinder (guided towards its normals).
+fn tilted_honeycomb() -> (Honeycomb, Connectivity, Surface) {
+    let (base, surface) = lifted_hex_patch(Shape::Cylinder, 600);
+    let options = OptimizeOptions {
+        weights: Weights {
+            guide: 3.0,
+            fairness: 0.0,
+            ..Weights::default()
+        },
+        solver: SolverOptions {
+            max_iterations: 15,
+            ..SolverOptions::default()
+        },
+        ..OptimizeOptions::default()
+    };
+    let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).unwrap();
     (
         opt.honeycomb,
         opt.connectivity,
@@ -127,4 +151,47 @@ fn an_inverting_resize_and_a_missing_cell_are_refused() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("does not exist"), "{err}");
+}
+
+#[test]
+fn subdivision_quadruples_the_cells_and_keeps_angles_and_the_spherical_image() {
+    let (h, conn, s) = tilted_honeycomb();
+    let before = measure(&h, &s);
+    let interior_walls = (0..h.edges.len())
+        .filter(|&e| !conn.is_boundary_edge(e))
+        .count();
+    let (sub, sub_conn) = subdivide(&h, &conn, 0.5).unwrap();
+    assert_eq!(sub.base.faces.len(), h.base.faces.len() + interior_walls);
+    let ratio = sub.base.faces.len() as f64 / h.base.faces.len() as f64;
+    assert!(ratio > 3.5 && ratio < 4.0, "{ratio}");
+    assert!((0..sub.base.vertices.len()).all(|v| (2..=3).contains(&sub_conn.valence(v))));
+    let after = measure(&sub, &s);
+    println!(
+        "cells {} -> {}, omega {:.2e} -> {:.2e}, delta {:.1e}",
+        h.base.faces.len(),
+        sub.base.faces.len(),
+        before.omega_max_deg,
+        after.omega_max_deg,
+        after.delta_max
+    );
+    assert!((after.omega_max_deg - before.omega_max_deg).abs() < 1e-9);
+    assert!(after.delta_max < 1e-9, "delta_max {}", after.delta_max);
+    // Same spherical image: every new axis is an old one, and every old one is still there.
+    let key = |a: &honeycomb::geometry::Vec3| a.to_array().map(|x| x.to_bits());
+    let old: std::collections::HashSet<_> = h.axes.iter().map(key).collect();
+    let new: std::collections::HashSet<_> = sub.axes.iter().map(key).collect();
+    assert!(
+        old.len() > 100,
+        "the test needs varied axes, has {}",
+        old.len()
+    );
+    assert_eq!(old, new);
+    // The shrunken cells keep their number of sides; the new ones are hexagons.
+    for (f, face) in h.base.faces.iter().enumerate() {
+        assert_eq!(sub.base.faces[f].len(), face.len());
+    }
+    assert!(sub.base.faces[h.base.faces.len()..]
+        .iter()
+        .all(|f| f.len() == 6));
+    assert!(subdivide(&h, &conn, 1.5).is_err());
 }

@@ -1,7 +1,9 @@
 //! Edits of a realized honeycomb that keep it a honeycomb (paper section 4).
 
 mod resize;
+mod subdivide;
 mod translate;
 
 pub use resize::resize_cell;
+pub use subdivide::subdivide;
 pub use translate::translate_walls;

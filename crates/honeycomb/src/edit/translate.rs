@@ -66,7 +66,7 @@ pub fn translate_walls(h: &Honeycomb, conn: &Connectivity, lambda: &[f64]) -> Re
 /// The least-norm `dv` with `n . dv = lambda` for every wall `(n, lambda)` at a node: it lies
 /// in the plane across the axis, where the walls' normals live, so the vertex stays on the
 /// closest point of its (moved) axis.
-fn axis_plane_shift(axis: Vec3, walls: &[(Vec3, f64)]) -> Vec3 {
+pub(crate) fn axis_plane_shift(axis: Vec3, walls: &[(Vec3, f64)]) -> Vec3 {
     let u = axis.any_orthogonal();
     let w = axis.cross(u);
     // Least squares in (u, w): [sum p p^T] c = sum p lambda, p = (n.u, n.w).

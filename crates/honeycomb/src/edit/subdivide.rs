@@ -1,0 +1,116 @@
+//! Subdivision by shrinking every cell (paper Fig. 14): each cell's walls move inwards, and the
+//! space freed along every interior wall becomes a new hexagonal cell. Every new node sits on a
+//! parallel copy of an old node's walls, so it has that node's axis: the spherical image is
+//! unchanged, and angles are kept. Cells: one per old cell and one per interior wall (4x for a
+//! large hexagonal patch).
+
+use super::translate::axis_plane_shift;
+use crate::error::{Error, Result};
+use crate::geometry::Vec3;
+use crate::mesh::{Connectivity, PolyMesh};
+use crate::structure::Honeycomb;
+use std::collections::HashMap;
+
+/// Shrinks every cell to `shrink` times its size (0 < shrink < 1; walls move inwards by
+/// `1 - shrink` times the mean distance of the cell's walls from its centroid).
+pub fn subdivide(
+    h: &Honeycomb,
+    conn: &Connectivity,
+    shrink: f64,
+) -> Result<(Honeycomb, Connectivity)> {
+    if !(shrink > 0.0 && shrink < 1.0) {
+        return Err(Error::Parameter(format!(
+            "shrink {shrink}: expected a fraction between 0 and 1 (0.5 gives cells of about one size)"
+        )));
+    }
+    let faces = &h.base.faces;
+    let p = &h.base.vertices;
+    let normals: Vec<Vec3> = (0..h.edges.len()).map(|e| h.wall_normal(e)).collect();
+    let mut vertices: Vec<Vec3> = Vec::new();
+    let mut axes: Vec<Vec3> = Vec::new();
+    // The old nodes keep their place (when a new cell uses them), then one corner per cell corner.
+    let mut node_index: HashMap<usize, usize> = HashMap::new();
+    let mut corner_index: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut new_faces: Vec<Vec<usize>> = Vec::with_capacity(faces.len() + h.edges.len());
+
+    for (c, face) in faces.iter().enumerate() {
+        let n = face.len();
+        let centroid = face.iter().fold(Vec3::ZERO, |s, &v| s + p[v]) / n as f64;
+        // Each wall of the cell, seen from its start, turned inwards.
+        let inward: Vec<(usize, Vec3)> = (0..n)
+            .map(|k| {
+                let e = conn.face_edges[c][k];
+                let m = normals[e] * conn.edge_sign(e, face[k]);
+                let mid = (p[face[k]] + p[face[(k + 1) % n]]) * 0.5;
+                (e, if m.dot(centroid - mid) >= 0.0 { m } else { -m })
+            })
+            .collect();
+        let radius = inward
+            .iter()
+            .zip(face)
+            .map(|(&(_, m), &v)| m.dot(centroid - p[v]))
+            .sum::<f64>()
+            / n as f64;
+        let t = (1.0 - shrink) * radius;
+        let mut loop_ = Vec::with_capacity(n);
+        for k in 0..n {
+            let v = face[k];
+            // At corner v the walls k-1 and k of the cell move inwards by t; its other walls stay.
+            let walls: Vec<(Vec3, f64)> = conn.vertex_edges[v]
+                .iter()
+                .map(|&e| {
+                    let s = conn.edge_sign(e, v);
+                    let n_v = normals[e] * s;
+                    let shift = [inward[k], inward[(k + n - 1) % n]]
+                        .iter()
+                        .find(|(ce, _)| *ce == e)
+                        .map_or(0.0, |&(_, m)| t * m.dot(n_v));
+                    (n_v, shift)
+                })
+                .collect();
+            vertices.push(p[v] + axis_plane_shift(h.axes[v], &walls));
+            axes.push(h.axes[v]);
+            corner_index.insert((v, c), vertices.len() - 1);
+            loop_.push(vertices.len() - 1);
+        }
+        new_faces.push(loop_);
+    }
+    let mut node = |v: usize, vertices: &mut Vec<Vec3>, axes: &mut Vec<Vec3>| -> usize {
+        *node_index.entry(v).or_insert_with(|| {
+            vertices.push(p[v]);
+            axes.push(h.axes[v]);
+            vertices.len() - 1
+        })
+    };
+    for (e, &[i, j]) in h.edges.iter().enumerate() {
+        let [Some(fa), Some(fb)] = conn.edge_faces[e] else {
+            continue; // boundary wall: nothing on its outer side
+        };
+        // Cell A runs i -> j along this wall, cell B runs j -> i.
+        let runs_i_to_j = |f: usize| {
+            let face = &faces[f];
+            let k = face
+                .iter()
+                .position(|&v| v == i)
+                .expect("edge endpoint in its face");
+            face[(k + 1) % face.len()] == j
+        };
+        let (a, b) = if runs_i_to_j(fa) { (fa, fb) } else { (fb, fa) };
+        let (vi, vj) = (
+            node(i, &mut vertices, &mut axes),
+            node(j, &mut vertices, &mut axes),
+        );
+        new_faces.push(vec![
+            corner_index[&(j, a)],
+            corner_index[&(i, a)],
+            vi,
+            corner_index[&(i, b)],
+            corner_index[&(j, b)],
+            vj,
+        ]);
+    }
+    let base = PolyMesh::new(vertices, new_faces);
+    let conn = Connectivity::build(&base)
+        .map_err(|e| Error::Parameter(format!("subdivision of this honeycomb failed: {e}")))?;
+    Ok((Honeycomb::new(base, &conn, axes, h.thickness), conn))
+}
