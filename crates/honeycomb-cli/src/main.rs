@@ -6,6 +6,7 @@ mod demo;
 mod edit;
 mod optimize;
 mod progress;
+mod render;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -29,6 +30,8 @@ enum Command {
     Demo(demo::Args),
     /// Edit a structure directory by wall translations (resize a cell).
     Edit(edit::Args),
+    /// Draw a structure directory's honeycomb as an SVG picture, colour-coded.
+    Render(render::Args),
     /// Spherical image of a structure directory: cell areas, Proposition 1 check.
     Analyse(analyse::Args),
     /// Time the optimizer on generated hex meshes of growing size (Figure 16 columns).
@@ -43,6 +46,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench::run(args),
         Command::Analyse(args) => analyse::run(args),
         Command::Edit(args) => edit::run(args),
+        Command::Render(args) => render::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -12,6 +12,7 @@ pub mod generate;
 pub mod geometry;
 pub mod mesh;
 pub mod optimize;
+pub mod render;
 pub mod report;
 pub mod solve;
 pub mod structure;

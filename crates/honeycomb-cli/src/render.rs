@@ -1,0 +1,75 @@
+//! `honeycomb render DIR -o FILE.svg`: a picture of a structure directory's honeycomb.
+
+use honeycomb::export::read_structure;
+use honeycomb::mesh::write_atomically;
+use honeycomb::render::{svg, Coloring, View};
+use honeycomb::structure::measure;
+use honeycomb::surface::Surface;
+use honeycomb::{Error, Result};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// A structure directory written by `optimize`, `demo` or `edit`.
+    pub dir: PathBuf,
+    /// Output picture (.svg).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// What the wall colours show: omega (the worst node angle at either end, degrees) or
+    /// delta (the wall's planarity).
+    #[arg(long, default_value = "delta")]
+    pub color: String,
+    /// Viewing direction: top, front, side or iso.
+    #[arg(long, default_value = "iso")]
+    pub view: View,
+    /// Picture width in pixels.
+    #[arg(long, default_value_t = 1200)]
+    pub width: u32,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let ext = args
+        .output
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("");
+    if !ext.eq_ignore_ascii_case("svg") {
+        return Err(Error::Parameter(format!(
+            "-o {}: only .svg pictures can be written so far",
+            args.output.display()
+        )));
+    }
+    if !(200..=20_000).contains(&args.width) {
+        return Err(Error::Parameter(format!(
+            "--width {}: expected 200 to 20000 pixels",
+            args.width
+        )));
+    }
+    let (h, _) = read_structure(&args.dir)?;
+    let m = measure(&h, &Surface::from_mesh(&h.base)?);
+    let (label, per_wall): (&str, Vec<f64>) = match args.color.as_str() {
+        "delta" => ("delta (wall planarity)", m.delta_per_wall.clone()),
+        "omega" => (
+            "omega (deg)",
+            h.edges
+                .iter()
+                .map(|&[a, b]| m.omega_per_node[a].max(m.omega_per_node[b]))
+                .collect(),
+        ),
+        other => {
+            return Err(Error::Parameter(format!(
+                "--color {other}: expected omega or delta"
+            )))
+        }
+    };
+    let text = svg(
+        &h,
+        &Coloring {
+            label,
+            per_wall: &per_wall,
+        },
+        args.view,
+        args.width,
+    );
+    write_atomically(&args.output, |w| w.write_all(text.as_bytes()))
+}

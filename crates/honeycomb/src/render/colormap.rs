@@ -1,0 +1,78 @@
+//! A perceptually ordered colour map (dark blue, teal, green, yellow), and the scale that maps
+//! a measure onto it: logarithmic when the values span more than two decades, as omega and
+//! delta of a good honeycomb do.
+
+/// Colour at `t` in [0, 1] as (r, g, b).
+pub fn color(t: f64) -> (u8, u8, u8) {
+    const STOPS: [(f64, f64, f64); 5] = [
+        (68.0, 1.0, 84.0),
+        (59.0, 82.0, 139.0),
+        (33.0, 145.0, 140.0),
+        (94.0, 201.0, 98.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let x = t * (STOPS.len() - 1) as f64;
+    let k = (x.floor() as usize).min(STOPS.len() - 2);
+    let f = x - k as f64;
+    let (a, b) = (STOPS[k], STOPS[k + 1]);
+    let mix = |p: f64, q: f64| (p + (q - p) * f).round() as u8;
+    (mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+/// Maps values to [0, 1].
+#[derive(Clone, Copy, Debug)]
+pub struct Scale {
+    pub min: f64,
+    pub max: f64,
+    pub log: bool,
+}
+
+impl Scale {
+    pub fn of(values: &[f64]) -> Scale {
+        let finite = values.iter().copied().filter(|v| v.is_finite());
+        let min = finite.clone().fold(f64::INFINITY, f64::min);
+        let max = finite.fold(f64::NEG_INFINITY, f64::max);
+        if !min.is_finite() {
+            return Scale {
+                min: 0.0,
+                max: 1.0,
+                log: false,
+            };
+        }
+        let positive_min = values
+            .iter()
+            .copied()
+            .filter(|&v| v > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let log = positive_min.is_finite() && max / positive_min > 100.0;
+        let min = if log { positive_min } else { min };
+        Scale { min, max, log }
+    }
+
+    pub fn position(&self, v: f64) -> f64 {
+        let (lo, hi, v) = if self.log {
+            (self.min.log10(), self.max.log10(), v.max(self.min).log10())
+        } else {
+            (self.min, self.max, v)
+        };
+        if hi > lo {
+            (v - lo) / (hi - lo)
+        } else {
+            0.5
+        }
+    }
+
+    /// The value at position `t` of the bar.
+    pub fn value(&self, t: f64) -> f64 {
+        if self.log {
+            10f64.powf(self.min.log10() + t * (self.max.log10() - self.min.log10()))
+        } else {
+            self.min + t * (self.max - self.min)
+        }
+    }
+}
