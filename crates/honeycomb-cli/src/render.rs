@@ -1,8 +1,9 @@
 //! `honeycomb render DIR -o FILE.svg`: a picture of a structure directory's honeycomb.
 
+use honeycomb::analysis::spherical_image;
 use honeycomb::export::read_structure;
 use honeycomb::mesh::write_atomically;
-use honeycomb::render::{svg, Coloring, View};
+use honeycomb::render::{svg, svg_spherical, Coloring, View};
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result};
@@ -22,6 +23,12 @@ pub struct Args {
     /// Viewing direction: top, front, side or iso.
     #[arg(long, default_value = "iso")]
     pub view: View,
+    /// Draw the spherical image instead (node axes on the unit sphere, cells by area).
+    #[arg(long)]
+    pub spherical: bool,
+    /// With --spherical: areas within this of 0 (steradians) count as zero.
+    #[arg(long, default_value_t = 1e-3)]
+    pub tolerance: f64,
     /// Picture width in pixels.
     #[arg(long, default_value_t = 1200)]
     pub width: u32,
@@ -46,6 +53,17 @@ pub fn run(args: Args) -> Result<()> {
         )));
     }
     let (h, _) = read_structure(&args.dir)?;
+    if args.spherical {
+        if !args.tolerance.is_finite() || args.tolerance <= 0.0 || args.tolerance >= 0.5 {
+            return Err(Error::Parameter(format!(
+                "--tolerance {}: expected a positive area below 0.5 steradians",
+                args.tolerance
+            )));
+        }
+        let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);
+        let text = svg_spherical(&h.base.faces, &h.axes, &image, args.width);
+        return write_atomically(&args.output, |w| w.write_all(text.as_bytes()));
+    }
     let m = measure(&h, &Surface::from_mesh(&h.base)?);
     let (label, per_wall): (&str, Vec<f64>) = match args.color.as_str() {
         "delta" => ("delta (wall planarity)", m.delta_per_wall.clone()),

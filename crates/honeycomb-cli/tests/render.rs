@@ -85,3 +85,57 @@ fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
     assert_clean_failure(&bad, &["--color taste"], None);
     assert!(!tmp.join("x.svg").exists());
 }
+
+#[test]
+fn the_spherical_image_tells_zero_area_cells_from_the_others() {
+    let tmp = TempDir::new("render-spherical");
+    let (good, rough) = (tmp.join("good"), tmp.join("rough"));
+    assert!(run([
+        "demo",
+        "--vertices",
+        "300",
+        "-q",
+        "-o",
+        good.to_str().unwrap()
+    ])
+    .status
+    .success());
+    // One damped iteration: axes near the dome's normals, every cell a small non-zero area.
+    let r = run([
+        "demo",
+        "--shape",
+        "dome",
+        "--vertices",
+        "300",
+        "--iterations",
+        "1",
+        "--eps",
+        "1000",
+        "-q",
+        "-o",
+        rough.to_str().unwrap(),
+    ]);
+    assert!(!r.status.success());
+    for (dir, class) in [(&good, "zero-area"), (&rough, "violation")] {
+        let out = dir.join("sphere.svg");
+        let r = run([
+            "render",
+            dir.to_str().unwrap(),
+            "--spherical",
+            "--tolerance",
+            "1e-5",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(r.status.success(), "{}", common::stderr(&r));
+        let svg = std::fs::read_to_string(&out).unwrap();
+        let cells = svg.matches("<polygon").count();
+        assert!(cells > 100, "{cells} cells drawn");
+        assert_eq!(
+            svg.matches(&format!("class=\"{class}\"")).count(),
+            cells,
+            "{class}"
+        );
+        assert!(svg.contains("Proposition 1 violated"));
+    }
+}
