@@ -3,7 +3,7 @@
 use honeycomb::analysis::spherical_image;
 use honeycomb::export::read_structure;
 use honeycomb::mesh::write_atomically;
-use honeycomb::render::{svg, svg_spherical, Coloring, View};
+use honeycomb::render::{spherical_scene, walls_scene, Coloring, Scene, View};
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result};
@@ -13,7 +13,7 @@ use std::path::PathBuf;
 pub struct Args {
     /// A structure directory written by `optimize`, `demo` or `edit`.
     pub dir: PathBuf,
-    /// Output picture (.svg).
+    /// Output picture: .svg, or .png (no text labels in PNG).
     #[arg(short, long)]
     pub output: PathBuf,
     /// What the wall colours show: omega (the worst node angle at either end, degrees) or
@@ -39,13 +39,22 @@ pub fn run(args: Args) -> Result<()> {
         .output
         .extension()
         .and_then(|e| e.to_str())
-        .unwrap_or("");
-    if !ext.eq_ignore_ascii_case("svg") {
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    if ext != "svg" && ext != "png" {
         return Err(Error::Parameter(format!(
-            "-o {}: only .svg pictures can be written so far",
+            "-o {}: the picture must be .svg or .png",
             args.output.display()
         )));
     }
+    let save = |scene: Scene| -> Result<()> {
+        let bytes = if ext == "png" {
+            scene.to_png()
+        } else {
+            scene.to_svg().into_bytes()
+        };
+        write_atomically(&args.output, |w| w.write_all(&bytes))
+    };
     if !(200..=20_000).contains(&args.width) {
         return Err(Error::Parameter(format!(
             "--width {}: expected 200 to 20000 pixels",
@@ -61,8 +70,7 @@ pub fn run(args: Args) -> Result<()> {
             )));
         }
         let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);
-        let text = svg_spherical(&h.base.faces, &h.axes, &image, args.width);
-        return write_atomically(&args.output, |w| w.write_all(text.as_bytes()));
+        return save(spherical_scene(&h.base.faces, &h.axes, &image, args.width));
     }
     let m = measure(&h, &Surface::from_mesh(&h.base)?);
     let (label, per_wall): (&str, Vec<f64>) = match args.color.as_str() {
@@ -80,7 +88,7 @@ pub fn run(args: Args) -> Result<()> {
             )))
         }
     };
-    let text = svg(
+    save(walls_scene(
         &h,
         &Coloring {
             label,
@@ -88,6 +96,5 @@ pub fn run(args: Args) -> Result<()> {
         },
         args.view,
         args.width,
-    );
-    write_atomically(&args.output, |w| w.write_all(text.as_bytes()))
+    ))
 }

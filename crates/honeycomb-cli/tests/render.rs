@@ -71,9 +71,9 @@ fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
         "render",
         dir.to_str().unwrap(),
         "-o",
-        tmp.join("x.png").to_str().unwrap(),
+        tmp.join("x.gif").to_str().unwrap(),
     ]);
-    assert_clean_failure(&bad, &["x.png", ".svg"], None);
+    assert_clean_failure(&bad, &["x.gif", ".svg or .png"], None);
     let bad = run([
         "render",
         dir.to_str().unwrap(),
@@ -137,5 +137,97 @@ fn the_spherical_image_tells_zero_area_cells_from_the_others() {
             "{class}"
         );
         assert!(svg.contains("Proposition 1 violated"));
+    }
+}
+
+/// Width, height and RGB pixels of a PNG made of stored (uncompressed) deflate blocks, as
+/// `render` writes them.
+fn decode_stored_png(bytes: &[u8]) -> (u32, u32, Vec<[u8; 3]>) {
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let (mut pos, mut idat, mut size) = (8, Vec::new(), (0, 0));
+    while pos < bytes.len() {
+        let len = u32::from_be_bytes(bytes[pos..pos + 4].try_into().unwrap()) as usize;
+        let kind = &bytes[pos + 4..pos + 8];
+        let data = &bytes[pos + 8..pos + 8 + len];
+        if kind == b"IHDR" {
+            size = (
+                u32::from_be_bytes(data[0..4].try_into().unwrap()),
+                u32::from_be_bytes(data[4..8].try_into().unwrap()),
+            );
+            assert_eq!(&data[8..10], &[8, 2], "8-bit RGB");
+        } else if kind == b"IDAT" {
+            idat.extend_from_slice(data);
+        }
+        pos += 12 + len;
+    }
+    let (mut raw, mut at) = (Vec::new(), 2);
+    loop {
+        let last = idat[at] & 1 == 1;
+        let len = u16::from_le_bytes([idat[at + 1], idat[at + 2]]) as usize;
+        raw.extend_from_slice(&idat[at + 5..at + 5 + len]);
+        at += 5 + len;
+        if last {
+            break;
+        }
+    }
+    let (w, h) = size;
+    assert_eq!(raw.len(), (h * (1 + 3 * w)) as usize);
+    let pixels = raw
+        .chunks((1 + 3 * w) as usize)
+        .flat_map(|row| {
+            row[1..]
+                .chunks(3)
+                .map(|p| [p[0], p[1], p[2]])
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    (w, h, pixels)
+}
+
+#[test]
+fn png_pictures_have_the_asked_size_and_colour() {
+    let tmp = TempDir::new("render-png");
+    let dir = tmp.join("h");
+    assert!(run([
+        "demo",
+        "--vertices",
+        "300",
+        "-q",
+        "-o",
+        dir.to_str().unwrap()
+    ])
+    .status
+    .success());
+    for extra in [&["--color", "delta"][..], &["--spherical"][..]] {
+        let out = tmp.join("p.png");
+        let mut args = vec![
+            "render",
+            dir.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--width",
+            "640",
+        ];
+        args.extend_from_slice(extra);
+        let r = run(&args);
+        assert!(r.status.success(), "{}", common::stderr(&r));
+        let (w, h, pixels) = decode_stored_png(&std::fs::read(&out).unwrap());
+        assert_eq!(w, 640);
+        assert!(h >= 260, "{h}");
+        let white = pixels.iter().filter(|p| **p == [255, 255, 255]).count();
+        let colours: HashSet<[u8; 3]> = pixels.iter().copied().collect();
+        println!(
+            "{extra:?}: {w}x{h}, {} colours, {:.0}% white",
+            colours.len(),
+            100.0 * white as f64 / pixels.len() as f64
+        );
+        if extra[0] == "--spherical" {
+            // A curve-like image: the zero-area cells' outlines trace the curve.
+            let outline = pixels.iter().filter(|p| **p == [122, 166, 194]).count();
+            assert!(outline > 50, "only {outline} outline pixels");
+        } else {
+            assert!(white < pixels.len() * 97 / 100, "nearly blank");
+            assert!(colours.len() >= 20, "only {} colours", colours.len());
+        }
     }
 }

@@ -2,18 +2,18 @@
 //! sphere seen along their mean direction, the cells as spherical polygons; zero-area cells
 //! light, the others (|area| >= pi/3 by Proposition 1) strong, violations red.
 
+use super::scene::{Rgb, Scene, Shape};
 use crate::analysis::SphericalImage;
 use crate::geometry::Vec3;
-use std::fmt::Write;
 
 const MARGIN: f64 = 30.0;
 
-pub fn svg_spherical(
+pub fn spherical_scene(
     faces: &[Vec<usize>],
     axes: &[Vec3],
     image: &SphericalImage,
     width: u32,
-) -> String {
+) -> Scene {
     let mean = axes.iter().fold(Vec3::ZERO, |s, &a| s + a);
     let toward = if mean.norm() > 1e-12 {
         mean.normalized()
@@ -26,22 +26,17 @@ pub fn svg_spherical(
     let project = |a: Vec3| (a.dot(right), a.dot(up), a.dot(toward));
     let w = width as f64;
     let r = (w - 2.0 * MARGIN) / 2.0;
-    let to_screen = |(x, y): (f64, f64)| (w / 2.0 + r * x, w / 2.0 - r * y);
+    let to_screen = |x: f64, y: f64| (w / 2.0 + r * x, w / 2.0 - r * y);
     let violating: std::collections::HashSet<usize> =
         image.proposition1_violations.iter().copied().collect();
 
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{width}" viewBox="0 0 {width} {width}">"#
-    );
-    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
-    let _ = writeln!(
-        s,
-        r##"<circle cx="{}" cy="{}" r="{r}" fill="none" stroke="#999" stroke-width="1"/>"##,
-        w / 2.0,
-        w / 2.0
-    );
+    let mut scene = Scene::new(width, width);
+    scene.shapes.push(Shape::Circle {
+        cx: w / 2.0,
+        cy: w / 2.0,
+        r,
+        stroke: (153, 153, 153),
+    });
     // Non-zero cells last, on top of the zero-area ones.
     let mut order: Vec<&crate::analysis::CellImage> = image.per_cell.iter().collect();
     order.sort_by(|a, b| a.area.abs().total_cmp(&b.area.abs()));
@@ -51,55 +46,58 @@ pub fn svg_spherical(
         if pts.iter().any(|p| p.2 < 0.0) {
             continue;
         }
-        let points: Vec<String> = pts
-            .iter()
-            .map(|&(x, y, _)| {
-                let (sx, sy) = to_screen((x, y));
-                format!("{sx:.1},{sy:.1}")
-            })
-            .collect();
         let (class, fill, stroke) = if violating.contains(&cell.cell) {
-            ("violation", "#e03030", "#800000")
+            ("violation", Some(VIOLATION), (128, 0, 0))
         } else if cell.area.abs() <= image.tolerance {
-            ("zero-area", "none", "#7aa6c2")
+            ("zero-area", None, ZERO)
         } else {
-            ("nonzero-area", "#f2b134", "#8a5a00")
+            ("nonzero-area", Some(NONZERO), (138, 90, 0))
         };
-        let _ = writeln!(
-            s,
-            r#"<polygon class="{class}" points="{}" fill="{fill}" fill-opacity="0.6" stroke="{stroke}" stroke-width="0.6"/>"#,
-            points.join(" ")
-        );
+        scene.shapes.push(Shape::Polygon {
+            points: pts.iter().map(|&(x, y, _)| to_screen(x, y)).collect(),
+            fill,
+            stroke: Some((stroke, 0.6)),
+            class: Some(class),
+            opacity: 0.6,
+        });
     }
     let legend = [
-        ("#7aa6c2", format!("zero area: {}", image.zero_area_cells)),
+        (ZERO, format!("zero area: {}", image.zero_area_cells)),
         (
-            "#f2b134",
+            NONZERO,
             format!(
                 "|area| >= pi/3: {}",
                 image.cells - image.zero_area_cells - image.proposition1_violations.len()
             ),
         ),
         (
-            "#e03030",
+            VIOLATION,
             format!(
                 "Proposition 1 violated: {}",
                 image.proposition1_violations.len()
             ),
         ),
     ];
-    for (k, (c, text)) in legend.iter().enumerate() {
+    for (k, (c, text)) in legend.into_iter().enumerate() {
         let y = 20.0 + 16.0 * k as f64;
-        let _ = writeln!(
-            s,
-            r#"<rect x="10" y="{}" width="10" height="10" fill="{c}"/>"#,
-            y - 9.0
-        );
-        let _ = writeln!(
-            s,
-            r#"<text x="26" y="{y}" font-family="sans-serif" font-size="12">{text}</text>"#
-        );
+        scene.shapes.push(Shape::Rect {
+            x: 10.0,
+            y: y - 9.0,
+            w: 10.0,
+            h: 10.0,
+            fill: c,
+            class: None,
+        });
+        scene.shapes.push(Shape::Text {
+            x: 26.0,
+            y,
+            size: 12.0,
+            text,
+        });
     }
-    s.push_str("</svg>\n");
-    s
+    scene
 }
+
+const ZERO: Rgb = (122, 166, 194);
+const NONZERO: Rgb = (242, 177, 52);
+const VIOLATION: Rgb = (224, 48, 48);

@@ -1,11 +1,11 @@
-//! An SVG picture of a honeycomb: wall quads filled by a measure (painter's order, far walls
-//! first), the edges of M dark and of M' light, and a colour bar.
+//! The honeycomb's walls as a picture: wall quads filled by a measure (painter's order, far
+//! walls first) and a colour bar.
 
 use super::colormap::{color, Scale};
+use super::scene::{Scene, Shape};
 use super::view::View;
 use crate::geometry::Vec3;
 use crate::structure::Honeycomb;
-use std::fmt::Write;
 
 /// What the colours mean, with one value per wall.
 pub struct Coloring<'a> {
@@ -16,15 +16,10 @@ pub struct Coloring<'a> {
 const BAR: f64 = 140.0;
 const MARGIN: f64 = 20.0;
 
-fn hex((r, g, b): (u8, u8, u8)) -> String {
-    format!("#{r:02x}{g:02x}{b:02x}")
-}
-
-/// The picture as SVG text, `width` pixels wide (the height follows the model's aspect).
-pub fn svg(h: &Honeycomb, coloring: &Coloring, view: View, width: u32) -> String {
-    let project = |p: Vec3| view.project(p);
-    let base: Vec<Vec3> = h.base.vertices.iter().map(|&p| project(p)).collect();
-    let offset: Vec<Vec3> = h.offset.vertices.iter().map(|&p| project(p)).collect();
+/// The picture, `width` pixels wide (the height follows the model's aspect).
+pub fn walls_scene(h: &Honeycomb, coloring: &Coloring, view: View, width: u32) -> Scene {
+    let base: Vec<Vec3> = h.base.vertices.iter().map(|&p| view.project(p)).collect();
+    let offset: Vec<Vec3> = h.offset.vertices.iter().map(|&p| view.project(p)).collect();
     let (lo, hi) = base.iter().chain(&offset).fold(
         (
             Vec3::new(f64::MAX, f64::MAX, 0.0),
@@ -51,79 +46,61 @@ pub fn svg(h: &Honeycomb, coloring: &Coloring, view: View, width: u32) -> String
     };
     order.sort_by(|&e, &f| depth(e).total_cmp(&depth(f)));
 
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}">"#
-    );
-    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
+    let mut scene = Scene::new(width, height as u32);
     for e in order {
         let [a, b] = h.edges[e];
-        let pts: Vec<String> = [base[a], base[b], offset[b], offset[a]]
-            .iter()
-            .map(|&p| {
-                let (x, y) = to_screen(p);
-                format!("{x:.1},{y:.1}")
-            })
-            .collect();
-        let fill = hex(color(scale.position(coloring.per_wall[e])));
-        let _ = writeln!(
-            s,
-            r##"<polygon points="{}" fill="{fill}" stroke="#222" stroke-width="0.4"/>"##,
-            pts.join(" ")
-        );
+        scene.shapes.push(Shape::Polygon {
+            points: [base[a], base[b], offset[b], offset[a]]
+                .map(to_screen)
+                .to_vec(),
+            fill: Some(color(scale.position(coloring.per_wall[e]))),
+            stroke: Some(((34, 34, 34), 0.4)),
+            class: None,
+            opacity: 1.0,
+        });
     }
-    colour_bar(&mut s, &scale, coloring.label, width as f64, height);
-    s.push_str("</svg>\n");
-    s
+    colour_bar(&mut scene, &scale, coloring.label, width as f64, height);
+    scene
 }
 
-fn colour_bar(s: &mut String, scale: &Scale, label: &str, width: f64, height: f64) {
+fn colour_bar(scene: &mut Scene, scale: &Scale, label: &str, width: f64, height: f64) {
     let (x, top, bar_h) = (
         width - BAR + 20.0,
         MARGIN + 30.0,
         (height - 2.0 * MARGIN - 60.0).max(100.0),
     );
     // The measure's name, and its explanation in brackets on a second line.
-    let (name, note) = label.split_once(" (").map_or((label, ""), |(n, r)| (n, r));
-    let _ = writeln!(
-        s,
-        r#"<text x="{x}" y="{}" font-family="sans-serif" font-size="13">{name}</text>"#,
-        MARGIN + 2.0
-    );
+    let (name, note) = label.split_once(" (").unwrap_or((label, ""));
+    let text = |x: f64, y: f64, size: f64, text: String| Shape::Text { x, y, size, text };
+    scene
+        .shapes
+        .push(text(x, MARGIN + 2.0, 13.0, name.to_string()));
     if !note.is_empty() {
-        let _ = writeln!(
-            s,
-            r#"<text x="{x}" y="{}" font-family="sans-serif" font-size="10">({note}</text>"#,
-            MARGIN + 16.0
-        );
+        scene
+            .shapes
+            .push(text(x, MARGIN + 16.0, 10.0, format!("({note}")));
     }
     let steps = 32;
     for i in 0..steps {
         let t = 1.0 - (i as f64 + 0.5) / steps as f64;
-        let y = top + bar_h * i as f64 / steps as f64;
-        let _ = writeln!(
-            s,
-            r#"<rect class="colour-bar" x="{x}" y="{y:.1}" width="22" height="{:.1}" fill="{}"/>"#,
-            bar_h / steps as f64 + 0.5,
-            hex(color(t))
-        );
+        scene.shapes.push(Shape::Rect {
+            x,
+            y: top + bar_h * i as f64 / steps as f64,
+            w: 22.0,
+            h: bar_h / steps as f64 + 0.5,
+            fill: color(t),
+            class: Some("colour-bar"),
+        });
     }
     for t in [0.0, 0.5, 1.0] {
-        let y = top + bar_h * (1.0 - t);
-        let _ = writeln!(
-            s,
-            r#"<text x="{}" y="{:.1}" font-family="sans-serif" font-size="11">{:.2e}</text>"#,
-            x + 28.0,
-            y + 4.0,
-            scale.value(t)
-        );
+        let y = top + bar_h * (1.0 - t) + 4.0;
+        scene
+            .shapes
+            .push(text(x + 28.0, y, 11.0, format!("{:.2e}", scale.value(t))));
     }
     if scale.log {
-        let _ = writeln!(
-            s,
-            r#"<text x="{x}" y="{:.1}" font-family="sans-serif" font-size="10">log scale</text>"#,
-            top + bar_h + 18.0
-        );
+        scene
+            .shapes
+            .push(text(x, top + bar_h + 18.0, 10.0, "log scale".into()));
     }
 }
