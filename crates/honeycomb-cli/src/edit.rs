@@ -1,7 +1,7 @@
 //! `honeycomb edit DIR <operation> -o OUT`: edits that keep a honeycomb a honeycomb.
 
 use crate::progress::Output;
-use honeycomb::edit::{resize_cell, subdivide};
+use honeycomb::edit::{reciprocal, resize_cell, subdivide};
 use honeycomb::export::{read_structure, write_structure};
 use honeycomb::report::{EditReport, Report};
 use honeycomb::structure::measure;
@@ -44,6 +44,13 @@ pub enum Operation {
         #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
         shrink: f64,
     },
+    /// Move walls out and in by turns (paper Fig. 15): every node becomes a triangular cell,
+    /// walls end on walls at T-junctions.
+    Reciprocal {
+        /// Distance in model units (default 0.1 mean edge lengths).
+        #[arg(long, allow_negative_numbers = true)]
+        by: Option<f64>,
+    },
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -52,6 +59,7 @@ pub fn run(args: Args) -> Result<()> {
         .clone()
         .ok_or_else(|| Error::Parameter("edit needs -o OUT, a new structure directory".into()))?;
     let (h, conn) = read_structure(&args.dir)?;
+    let mut t_junctions = 0;
     let (edited, operation) = match args.operation {
         Operation::Resize { cell, by } => (
             resize_cell(&h, &conn, cell, by)?,
@@ -62,11 +70,27 @@ pub fn run(args: Args) -> Result<()> {
             let cells = format!("{} cells -> {}", h.base.faces.len(), sub.base.faces.len());
             (sub, format!("subdivide with shrink {shrink}: {cells}"))
         }
+        Operation::Reciprocal { by } => {
+            let mean = h
+                .edges
+                .iter()
+                .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
+                .sum::<f64>()
+                / h.edges.len().max(1) as f64;
+            let by = by.unwrap_or(0.1 * mean);
+            let r = reciprocal(&h, &conn, by)?;
+            t_junctions = r.t_junctions.len();
+            let what = format!(
+                "reciprocal by {by}: {} triangular cells",
+                r.honeycomb.base.faces.len() - h.base.faces.len()
+            );
+            (r.honeycomb, what)
+        }
     };
     // Closeness is measured to the structure before the edit.
     let before = Surface::from_mesh(&h.base)?;
     let measures = measure(&edited, &before);
-    let report = EditReport::new(&edited, measures, operation);
+    let report = EditReport::new(&edited, measures, operation, t_junctions);
     write_structure(&out, &edited, &report)?;
     match Output::from_flags(args.quiet, args.json) {
         Output::Json => println!(

@@ -135,3 +135,56 @@ fn subdivide_writes_four_times_the_cells() {
     ]);
     assert_clean_failure(&bad, &["shrink 2"], None);
 }
+
+#[test]
+fn reciprocal_adds_a_triangle_per_node_and_reports_t_junctions() {
+    let tmp = TempDir::new("edit-reciprocal");
+    let (src, out) = (tmp.join("src"), tmp.join("out"));
+    assert!(run([
+        "demo",
+        "--vertices",
+        "300",
+        "-q",
+        "-o",
+        src.to_str().unwrap()
+    ])
+    .status
+    .success());
+    let ok = run([
+        "edit",
+        src.to_str().unwrap(),
+        "reciprocal",
+        "-q",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(ok.status.success(), "{}", common::stderr(&ok));
+    let read = |d: &std::path::Path| {
+        parse_json(
+            &std::fs::read_to_string(d.join("report.json")).unwrap(),
+            "report",
+        )
+    };
+    let (before, after) = (read(&src), read(&out));
+    let trivalent = before["valence_histogram"]["3"].as_u64().unwrap();
+    assert_eq!(
+        after["faces"].as_u64().unwrap(),
+        before["faces"].as_u64().unwrap() + trivalent
+    );
+    assert!(
+        after["t_junctions"].as_u64().unwrap() >= trivalent,
+        "{after}"
+    );
+    assert_eq!(after["honeycomb"], true, "{after}");
+    assert!(after["delta_max"].as_f64().unwrap() < 1e-9);
+    let bad = run([
+        "edit",
+        src.to_str().unwrap(),
+        "reciprocal",
+        "--by",
+        "-1",
+        "-o",
+        tmp.join("x").to_str().unwrap(),
+    ]);
+    assert_clean_failure(&bad, &["reciprocal by -1"], None);
+}

@@ -104,8 +104,11 @@ pub struct EditReport {
     pub vertices: usize,
     pub edges: usize,
     pub faces: usize,
-    /// The realized structure meets the honeycomb tolerances.
+    /// The realized structure meets the honeycomb tolerances (with T-junctions: its walls are
+    /// planar; the angles at a T-junction are 180/120/60 degrees by construction).
     pub honeycomb: bool,
+    /// Vertices where one wall ends on another (reciprocal structures).
+    pub t_junctions: usize,
     /// omega, delta and closeness (to the structure before the edit) as top-level keys.
     #[serde(flatten)]
     pub measures: Measures,
@@ -113,13 +116,24 @@ pub struct EditReport {
 }
 
 impl EditReport {
-    pub fn new(h: &Honeycomb, measures: Measures, operation: String) -> EditReport {
+    pub fn new(
+        h: &Honeycomb,
+        measures: Measures,
+        operation: String,
+        t_junctions: usize,
+    ) -> EditReport {
+        let honeycomb = if t_junctions == 0 {
+            Report::within_tolerances(&measures)
+        } else {
+            measures.delta_max <= Report::DELTA_TOLERANCE
+        };
         EditReport {
             operation,
             vertices: h.base.vertices.len(),
             edges: h.edges.len(),
             faces: h.base.faces.len(),
-            honeycomb: Report::within_tolerances(&measures),
+            honeycomb,
+            t_junctions,
             measures,
             thickness: h.thickness,
         }

@@ -1,6 +1,6 @@
 //! Wall translations keep a honeycomb a honeycomb.
 
-use honeycomb::edit::{resize_cell, subdivide, translate_walls};
+use honeycomb::edit::{reciprocal, resize_cell, subdivide, translate_walls};
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::mesh::Connectivity;
 use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
@@ -194,4 +194,46 @@ fn subdivision_quadruples_the_cells_and_keeps_angles_and_the_spherical_image() {
         .iter()
         .all(|f| f.len() == 6));
     assert!(subdivide(&h, &conn, 1.5).is_err());
+}
+
+#[test]
+fn the_reciprocal_structure_has_a_triangle_per_node_and_straight_t_junctions() {
+    let (h, conn, _) = tilted_honeycomb();
+    let trivalent = (0..h.base.vertices.len())
+        .filter(|&v| conn.valence(v) == 3)
+        .count();
+    let r = reciprocal(&h, &conn, 0.15).unwrap();
+    let m = &r.honeycomb.base;
+    assert_eq!(m.faces.len(), h.base.faces.len() + trivalent);
+    assert_eq!(
+        m.faces[h.base.faces.len()..]
+            .iter()
+            .filter(|f| f.len() == 3)
+            .count(),
+        trivalent
+    );
+    // Each triangle corner is a T-junction: of its three walls, two are pieces of one wall that
+    // continues through it (coplanar: parallel normals), the third ends on it.
+    assert!(r.t_junctions.len() >= trivalent);
+    for &v in &r.t_junctions {
+        let walls: Vec<_> = r.connectivity.vertex_edges[v]
+            .iter()
+            .map(|&e| r.honeycomb.wall_normal(e))
+            .collect();
+        assert_eq!(walls.len(), 3, "T-junction {v}");
+        let through = (0..3).any(|a| (a + 1..3).any(|b| walls[a].dot(walls[b]).abs() > 1.0 - 1e-9));
+        assert!(
+            through,
+            "no wall continues through T-junction {v}: {walls:?}"
+        );
+    }
+    // Walls keep their planes' directions and stay planar; the axes are the old ones.
+    let s = Surface::from_mesh(&h.base).unwrap();
+    let after = measure(&r.honeycomb, &s);
+    assert!(after.delta_max < 1e-9, "delta_max {}", after.delta_max);
+    let key = |a: &honeycomb::geometry::Vec3| a.to_array().map(|x| x.to_bits());
+    let old: std::collections::HashSet<_> = h.axes.iter().map(key).collect();
+    let new: std::collections::HashSet<_> = r.honeycomb.axes.iter().map(key).collect();
+    assert!(new.is_subset(&old));
+    assert!(reciprocal(&h, &conn, -1.0).is_err());
 }
