@@ -2,7 +2,7 @@
 
 use honeycomb::analysis::spherical_image;
 use honeycomb::export::read_structure;
-use honeycomb::mesh::write_atomically;
+use honeycomb::mesh::{read_mesh, write_atomically, Connectivity};
 use honeycomb::render::{spherical_scene, walls_scene, Coloring, Scene, View};
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
@@ -16,13 +16,17 @@ pub struct Args {
     /// Output picture: .svg, or .png (no text labels in PNG).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// What the wall colours show: omega (the worst node angle at either end, degrees) or
-    /// delta (the wall's planarity).
+    /// What the wall colours show: omega (the worst node angle at either end, degrees), delta
+    /// (the wall's planarity), closeness (distance of its ends from S, in mean edge lengths;
+    /// needs --surface or DIR/surface.obj) or area (|spherical area| of its cells, sr).
     #[arg(long, default_value = "delta")]
     pub color: String,
     /// Viewing direction: top, front, side or iso.
     #[arg(long, default_value = "iso")]
     pub view: View,
+    /// The design surface S, for --color closeness (default: DIR/surface.obj when present).
+    #[arg(long)]
+    pub surface: Option<PathBuf>,
     /// Draw the spherical image instead (node axes on the unit sphere, cells by area).
     #[arg(long)]
     pub spherical: bool,
@@ -82,9 +86,49 @@ pub fn run(args: Args) -> Result<()> {
                 .map(|&[a, b]| m.omega_per_node[a].max(m.omega_per_node[b]))
                 .collect(),
         ),
+        "closeness" => {
+            let path = args
+                .surface
+                .clone()
+                .unwrap_or_else(|| args.dir.join("surface.obj"));
+            if !path.is_file() {
+                return Err(Error::Parameter(format!(
+                    "--color closeness needs the design surface: {} does not exist (give --surface S)",
+                    path.display()
+                )));
+            }
+            let surface = Surface::from_mesh(&read_mesh(&path)?.mesh)?;
+            let unit = m.mean_edge_length;
+            let d: Vec<f64> = h
+                .base
+                .vertices
+                .iter()
+                .map(|&p| surface.closest_point(p).distance / unit)
+                .collect();
+            (
+                "closeness (edge lengths)",
+                h.edges.iter().map(|&[a, b]| d[a].max(d[b])).collect(),
+            )
+        }
+        "area" => {
+            let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);
+            let conn = Connectivity::build(&h.base)?;
+            (
+                "area (spherical, sr)",
+                conn.edge_faces
+                    .iter()
+                    .map(|fs| {
+                        fs.iter()
+                            .flatten()
+                            .map(|&f| image.per_cell[f].area.abs())
+                            .fold(0.0, f64::max)
+                    })
+                    .collect(),
+            )
+        }
         other => {
             return Err(Error::Parameter(format!(
-                "--color {other}: expected omega or delta"
+                "--color {other}: expected omega, delta, closeness or area"
             )))
         }
     };

@@ -33,7 +33,12 @@ fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
     )["edges"]
         .as_u64()
         .unwrap() as usize;
-    for (color, view) in [("delta", "iso"), ("omega", "top"), ("delta", "front")] {
+    for (color, view) in [
+        ("delta", "iso"),
+        ("omega", "top"),
+        ("delta", "front"),
+        ("closeness", "side"),
+    ] {
         let out = tmp.join(&format!("{color}-{view}.svg"));
         let r = run([
             "render",
@@ -61,11 +66,7 @@ fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
             distinct.len()
         );
         assert!(svg.matches("class=\"colour-bar\"").count() >= 16);
-        assert!(svg.contains(if color == "delta" {
-            ">delta<"
-        } else {
-            ">omega<"
-        }));
+        assert!(svg.contains(&format!(">{color}<")), "{color}");
     }
     let bad = run([
         "render",
@@ -83,6 +84,17 @@ fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
         "taste",
     ]);
     assert_clean_failure(&bad, &["--color taste"], None);
+    // Closeness needs the design surface; this directory has none once surface.obj is gone.
+    std::fs::remove_file(dir.join("surface.obj")).unwrap();
+    let bad = run([
+        "render",
+        dir.to_str().unwrap(),
+        "-o",
+        tmp.join("x.svg").to_str().unwrap(),
+        "--color",
+        "closeness",
+    ]);
+    assert_clean_failure(&bad, &["closeness", "--surface"], None);
     assert!(!tmp.join("x.svg").exists());
 }
 
@@ -138,6 +150,20 @@ fn the_spherical_image_tells_zero_area_cells_from_the_others() {
         );
         assert!(svg.contains("Proposition 1 violated"));
     }
+    // Walls coloured by the spherical area of their cells vary where the areas do.
+    let out = rough.join("area.svg");
+    let r = run([
+        "render",
+        rough.to_str().unwrap(),
+        "--color",
+        "area",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", common::stderr(&r));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let distinct: HashSet<String> = fills(&svg).into_iter().collect();
+    assert!(distinct.len() >= 5, "only {} colours", distinct.len());
 }
 
 /// Width, height and RGB pixels of a PNG made of stored (uncompressed) deflate blocks, as
