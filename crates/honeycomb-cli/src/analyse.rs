@@ -60,6 +60,14 @@ pub fn run(args: Args) -> Result<()> {
                 "largest distance of an area from a multiple of pi/3: {:.1e} sr",
                 image.max_deviation_from_multiple
             );
+            match image.curve_likeness {
+                Some(c) => println!(
+                    "curve-likeness of the cells' images (Property 2; 1 thin, 0 round): {c:.2} \
+                     ({} point-like cells left out)",
+                    image.point_like_cells
+                ),
+                None => println!("every cell's image is a point: all node axes of a cell coincide"),
+            }
             println!(
                 "wrote analysis.json and spherical_image.obj in {}",
                 args.dir.display()

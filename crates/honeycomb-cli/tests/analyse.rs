@@ -95,6 +95,8 @@ fn an_optimized_honeycomb_satisfies_proposition_1_and_an_unoptimized_mesh_does_n
         a["proposition1_violations"].as_array().unwrap().len() as u64 > cells / 2,
         "{a}"
     );
+    // Axes near a dome's normals: every cell's image is a small round patch, not curve-like.
+    assert!(a["curve_likeness"].as_f64().unwrap() < 0.3, "{a}");
 }
 
 #[test]
@@ -142,4 +144,6 @@ fn hexagonalminimal_has_a_zero_area_image() {
         "{a}"
     );
     assert!(a["zero_area_share"].as_f64().unwrap() > 0.9, "{a}");
+    // Property 2: the image is curve-like (the cells' images are thin zigzags).
+    assert!(a["curve_likeness"].as_f64().unwrap() > 0.7, "{a}");
 }

@@ -33,6 +33,14 @@ pub struct SphericalImage {
     pub proposition1_violations: Vec<usize>,
     /// Largest distance of an area from its nearest multiple of pi/3.
     pub max_deviation_from_multiple: f64,
+    /// Property 2, measured per cell: the mean of `1 - l2/l1` over cells, with `l1 >= l2` the
+    /// principal variances of the cell's axis points in the plane tangent at their mean. Near 1
+    /// the cells' images are thin (the zigzag hexagons of a curve-like image, paper Fig. 5),
+    /// near 0 round (axes spreading like a doubly curved surface's normals).
+    /// `None` when every cell is point-like.
+    pub curve_likeness: Option<f64>,
+    /// Cells whose axes all coincide (their image is a point), left out of `curve_likeness`.
+    pub point_like_cells: usize,
     #[serde(skip)]
     pub per_cell: Vec<CellImage>,
 }
@@ -69,7 +77,14 @@ pub fn spherical_image(faces: &[Vec<usize>], axes: &[Vec3], tolerance: f64) -> S
         .iter()
         .map(|c| (c.area - c.multiple as f64 * third).abs())
         .fold(0.0, f64::max);
+    let shapes: Vec<Option<f64>> = faces
+        .iter()
+        .map(|f| anisotropy(&f.iter().map(|&v| axes[v]).collect::<Vec<_>>()))
+        .collect();
+    let thin: Vec<f64> = shapes.iter().flatten().copied().collect();
     SphericalImage {
+        curve_likeness: (!thin.is_empty()).then(|| thin.iter().sum::<f64>() / thin.len() as f64),
+        point_like_cells: shapes.len() - thin.len(),
         cells: per_cell.len(),
         histogram,
         zero_area_cells,
@@ -79,4 +94,31 @@ pub fn spherical_image(faces: &[Vec<usize>], axes: &[Vec3], tolerance: f64) -> S
         max_deviation_from_multiple,
         per_cell,
     }
+}
+
+/// `1 - l2/l1` of the points' spread in the plane tangent at their mean direction, or `None`
+/// when they (nearly) coincide.
+fn anisotropy(points: &[Vec3]) -> Option<f64> {
+    let mean = points.iter().fold(Vec3::ZERO, |s, &p| s + p);
+    if mean.norm() < 1e-12 {
+        return None;
+    }
+    let n = mean.normalized();
+    let (u, w) = (n.any_orthogonal(), n.cross(n.any_orthogonal()));
+    let uv: Vec<(f64, f64)> = points.iter().map(|p| (p.dot(u), p.dot(w))).collect();
+    let k = uv.len() as f64;
+    let (mu, mw) = uv
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 / k, b + p.1 / k));
+    let (mut a, mut b, mut c) = (0.0, 0.0, 0.0);
+    for (x, y) in &uv {
+        let (dx, dy) = (x - mu, y - mw);
+        a += dx * dx;
+        b += dx * dy;
+        c += dy * dy;
+    }
+    let half_trace = 0.5 * (a + c);
+    let root = (0.25 * (a - c) * (a - c) + b * b).sqrt();
+    let (l1, l2) = (half_trace + root, half_trace - root);
+    (l1 > 1e-20).then(|| 1.0 - (l2 / l1).max(0.0))
 }
