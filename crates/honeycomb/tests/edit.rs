@@ -102,6 +102,15 @@ fn resizing_a_cell_keeps_every_node_and_wall() {
     }
     assert_eq!(moved, 6);
     assert!(after.delta_max < 1e-9, "delta_max {}", after.delta_max);
+    // Walls away from the cell's corners keep their planarity exactly.
+    for (e, &[a, b]) in h.edges.iter().enumerate() {
+        if !corners.contains(&a) && !corners.contains(&b) {
+            assert_eq!(
+                after.delta_per_wall[e], before.delta_per_wall[e],
+                "wall {e}"
+            );
+        }
+    }
     // The axes keep their directions, and the cell shrank: its walls moved 0.2 inwards, so each
     // side shortens by 2 * 0.2 / tan(60 deg).
     assert_eq!(resized.axes, h.axes);

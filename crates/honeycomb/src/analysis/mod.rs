@@ -3,5 +3,5 @@
 mod spherical_area;
 mod spherical_image;
 
-pub use spherical_area::{oriented_area, triangle_area};
+pub use spherical_area::{oriented_area, total_turning, triangle_area};
 pub use spherical_image::{spherical_image, CellImage, SphericalImage};

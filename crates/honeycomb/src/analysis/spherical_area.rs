@@ -30,6 +30,22 @@ pub fn oriented_area(points: &[Vec3]) -> f64 {
         .sum()
 }
 
+/// Sum of the signed turning angles of the closed spherical polygon (counter-clockwise seen
+/// from outside positive). With the oriented area it gives the rotation number, eq. (3):
+/// `area = 2 pi R - sum of turns`.
+pub fn total_turning(points: &[Vec3]) -> f64 {
+    let n = points.len();
+    (0..n)
+        .map(|k| {
+            let (a, b, c) = (points[(k + n - 1) % n], points[k], points[(k + 1) % n]);
+            // Arriving direction continued past b, and leaving direction, both tangent at b.
+            let t1 = (b * a.dot(b) - a).normalized();
+            let t2 = (c - b * c.dot(b)).normalized();
+            b.dot(t1.cross(t2)).atan2(t1.dot(t2))
+        })
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -75,6 +91,9 @@ mod tests {
         assert!((interior_angle(&pentagon, 2) - 2.0 * PI / 3.0).abs() < 1e-9);
         let area = oriented_area(&pentagon);
         assert!((area - PI / 3.0).abs() < 1e-9, "{area}");
+        // Five turns of 60 degrees, rotation number 1: pi/3 = 2 pi - 5 pi/3.
+        let turning = total_turning(&pentagon);
+        assert!((turning - 5.0 * PI / 3.0).abs() < 1e-9, "{turning}");
         // Reversed orientation, negative area.
         let mut reversed = pentagon.clone();
         reversed.reverse();

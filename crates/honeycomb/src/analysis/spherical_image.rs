@@ -3,7 +3,7 @@
 //! and with walls at 120 degrees both terms are multiples of pi/3: so is the area, and
 //! Proposition 1 follows (0, or at least pi/3 in absolute value).
 
-use super::spherical_area::oriented_area;
+use super::spherical_area::{oriented_area, total_turning};
 use crate::geometry::Vec3;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -16,6 +16,10 @@ pub struct CellImage {
     pub area: f64,
     /// The nearest multiple of pi/3, `round(area / (pi/3))`.
     pub multiple: i64,
+    /// Sum of the turning angles of the cell's spherical polygon (radians).
+    pub turning: f64,
+    /// Rotation number `R = (area + turning) / 2 pi`, an integer for a closed polygon.
+    pub rotation: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -41,7 +45,7 @@ pub struct SphericalImage {
     pub curve_likeness: Option<f64>,
     /// Cells whose axes all coincide (their image is a point), left out of `curve_likeness`.
     pub point_like_cells: usize,
-    #[serde(skip)]
+    /// Every cell's area, multiple of pi/3, turning and rotation number.
     pub per_cell: Vec<CellImage>,
 }
 
@@ -53,10 +57,13 @@ pub fn spherical_image(faces: &[Vec<usize>], axes: &[Vec3], tolerance: f64) -> S
         .map(|(cell, f)| {
             let points: Vec<Vec3> = f.iter().map(|&v| axes[v]).collect();
             let area = oriented_area(&points);
+            let turning = total_turning(&points);
             CellImage {
                 cell,
                 area,
                 multiple: (area / third).round() as i64,
+                turning,
+                rotation: (area + turning) / (2.0 * PI),
             }
         })
         .collect();
