@@ -2,26 +2,17 @@
 
 mod common;
 
-use common::{assert_clean_failure, parse_json, run, shared_data, stdout, TempDir};
+use common::{assert_clean_failure, demo, read_json, run, shared_data, stdout, TempDir};
 
 fn analysis(dir: &std::path::Path) -> serde_json::Value {
-    let text = std::fs::read_to_string(dir.join("analysis.json")).expect("analysis.json");
-    parse_json(&text, "analysis.json")
+    read_json(dir, "analysis.json")
 }
 
 #[test]
 fn an_optimized_honeycomb_satisfies_proposition_1_and_an_unoptimized_mesh_does_not() {
     let tmp = TempDir::new("analyse-demo");
     let good = tmp.join("good");
-    let out = run([
-        "demo",
-        "--shape",
-        "dome",
-        "-q",
-        "-o",
-        good.to_str().unwrap(),
-    ]);
-    assert!(out.status.success());
+    demo(&good, &["--shape", "dome"]);
     let out = run(["analyse", good.to_str().unwrap()]);
     assert!(out.status.success(), "{}", common::stderr(&out));
     assert!(
@@ -104,8 +95,7 @@ fn optimized_saddle_and_dome_have_no_proposition_1_violation() {
     let tmp = TempDir::new("analyse-shapes");
     for shape in ["saddle", "dome"] {
         let dir = tmp.join(shape);
-        let out = run(["demo", "--shape", shape, "-q", "-o", dir.to_str().unwrap()]);
-        assert!(out.status.success());
+        demo(&dir, &["--shape", shape]);
         let out = run(["analyse", dir.to_str().unwrap()]);
         assert!(out.status.success());
         // The report says what the image is like: here every cell's axes coincide (the demo's

@@ -2,15 +2,13 @@
 
 mod common;
 
-use common::{assert_clean_failure, parse_json, run, TempDir};
+use common::{assert_clean_failure, demo, read_json, run, TempDir};
 
 #[test]
 fn resize_writes_a_new_honeycomb_and_refuses_nonsense() {
     let tmp = TempDir::new("edit-resize");
     let (src, out) = (tmp.join("src"), tmp.join("out"));
-    assert!(run(["demo", "-q", "-o", src.to_str().unwrap()])
-        .status
-        .success());
+    demo(&src, &[]);
     let ok = run([
         "edit",
         src.to_str().unwrap(),
@@ -33,10 +31,7 @@ fn resize_writes_a_new_honeycomb_and_refuses_nonsense() {
     ] {
         assert!(out.join(f).is_file(), "{f}");
     }
-    let report = parse_json(
-        &std::fs::read_to_string(out.join("report.json")).unwrap(),
-        "report",
-    );
+    let report = read_json(&out, "report.json");
     assert_eq!(report["honeycomb"], true, "{report}");
     assert!(report["omega_max_deg"].as_f64().unwrap() < 1e-6, "{report}");
     assert!(report["delta_max"].as_f64().unwrap() < 1e-9, "{report}");
@@ -95,16 +90,7 @@ fn resize_writes_a_new_honeycomb_and_refuses_nonsense() {
 fn subdivide_writes_four_times_the_cells() {
     let tmp = TempDir::new("edit-subdivide");
     let (src, out) = (tmp.join("src"), tmp.join("out"));
-    assert!(run([
-        "demo",
-        "--vertices",
-        "600",
-        "-q",
-        "-o",
-        src.to_str().unwrap()
-    ])
-    .status
-    .success());
+    demo(&src, &["--vertices", "600"]);
     let ok = run([
         "edit",
         src.to_str().unwrap(),
@@ -114,12 +100,7 @@ fn subdivide_writes_four_times_the_cells() {
         out.to_str().unwrap(),
     ]);
     assert!(ok.status.success(), "{}", common::stderr(&ok));
-    let read = |d: &std::path::Path| {
-        parse_json(
-            &std::fs::read_to_string(d.join("report.json")).unwrap(),
-            "report",
-        )
-    };
+    let read = |d: &std::path::Path| read_json(d, "report.json");
     let (before, after) = (read(&src), read(&out));
     let ratio = after["faces"].as_f64().unwrap() / before["faces"].as_f64().unwrap();
     assert!(ratio > 3.5 && ratio < 4.0, "{ratio}");
@@ -140,16 +121,7 @@ fn subdivide_writes_four_times_the_cells() {
 fn reciprocal_adds_a_triangle_per_node_and_reports_t_junctions() {
     let tmp = TempDir::new("edit-reciprocal");
     let (src, out) = (tmp.join("src"), tmp.join("out"));
-    assert!(run([
-        "demo",
-        "--vertices",
-        "300",
-        "-q",
-        "-o",
-        src.to_str().unwrap()
-    ])
-    .status
-    .success());
+    demo(&src, &["--vertices", "300"]);
     let ok = run([
         "edit",
         src.to_str().unwrap(),
@@ -159,12 +131,7 @@ fn reciprocal_adds_a_triangle_per_node_and_reports_t_junctions() {
         out.to_str().unwrap(),
     ]);
     assert!(ok.status.success(), "{}", common::stderr(&ok));
-    let read = |d: &std::path::Path| {
-        parse_json(
-            &std::fs::read_to_string(d.join("report.json")).unwrap(),
-            "report",
-        )
-    };
+    let read = |d: &std::path::Path| read_json(d, "report.json");
     let (before, after) = (read(&src), read(&out));
     let trivalent = before["valence_histogram"]["3"].as_u64().unwrap();
     assert_eq!(

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{assert_clean_failure, parse_json, run, TempDir};
+use common::{assert_clean_failure, demo, read_json, run, TempDir};
 use std::collections::HashSet;
 
 fn fills(svg: &str) -> Vec<String> {
@@ -17,22 +17,8 @@ fn fills(svg: &str) -> Vec<String> {
 fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
     let tmp = TempDir::new("render");
     let dir = tmp.join("h");
-    assert!(run([
-        "demo",
-        "--vertices",
-        "300",
-        "-q",
-        "-o",
-        dir.to_str().unwrap()
-    ])
-    .status
-    .success());
-    let edges = parse_json(
-        &std::fs::read_to_string(dir.join("report.json")).unwrap(),
-        "report",
-    )["edges"]
-        .as_u64()
-        .unwrap() as usize;
+    demo(&dir, &["--vertices", "300"]);
+    let edges = read_json(&dir, "report.json")["edges"].as_u64().unwrap() as usize;
     for (color, view) in [
         ("delta", "iso"),
         ("omega", "top"),
@@ -102,16 +88,7 @@ fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
 fn the_spherical_image_tells_zero_area_cells_from_the_others() {
     let tmp = TempDir::new("render-spherical");
     let (good, rough) = (tmp.join("good"), tmp.join("rough"));
-    assert!(run([
-        "demo",
-        "--vertices",
-        "300",
-        "-q",
-        "-o",
-        good.to_str().unwrap()
-    ])
-    .status
-    .success());
+    demo(&good, &["--vertices", "300"]);
     // One damped iteration: axes near the dome's normals, every cell a small non-zero area.
     let r = run([
         "demo",
@@ -214,16 +191,7 @@ fn decode_stored_png(bytes: &[u8]) -> (u32, u32, Vec<[u8; 3]>) {
 fn png_pictures_have_the_asked_size_and_colour() {
     let tmp = TempDir::new("render-png");
     let dir = tmp.join("h");
-    assert!(run([
-        "demo",
-        "--vertices",
-        "300",
-        "-q",
-        "-o",
-        dir.to_str().unwrap()
-    ])
-    .status
-    .success());
+    demo(&dir, &["--vertices", "300"]);
     for extra in [&["--color", "delta"][..], &["--spherical"][..]] {
         let out = tmp.join("p.png");
         let mut args = vec![

@@ -161,3 +161,19 @@ pub const REPORT_KEYS: [&str; 10] = [
     "closeness_avg",
     "seconds",
 ];
+
+/// `honeycomb demo EXTRA... -q -o DIR`, which must succeed.
+pub fn demo(dir: &Path, extra: &[&str]) {
+    let mut args: Vec<&str> = vec!["demo"];
+    args.extend_from_slice(extra);
+    args.extend(["-q", "-o", dir.to_str().expect("utf-8 path")]);
+    let out = run(&args);
+    assert!(out.status.success(), "demo {extra:?}: {}", stderr(&out));
+}
+
+/// `DIR/NAME` parsed as JSON.
+pub fn read_json(dir: &Path, name: &str) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join(name))
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.join(name).display()));
+    parse_json(&text, name)
+}
