@@ -54,6 +54,9 @@ pub struct SolveArgs {
     /// Weight of opposite-wall fairness in hexagons (fades with the regularization).
     #[arg(long, default_value_t = Weights::default().fairness, allow_negative_numbers = true)]
     pub w_fair: f64,
+    /// Keep every edge at least this long (model units), by dummy unknowns.
+    #[arg(long, allow_negative_numbers = true)]
+    pub min_edge: Option<f64>,
     /// Guide the node axes towards the surface normals in the first iterations, so that walls
     /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
     #[arg(long, default_value_t = Weights::default().guide, allow_negative_numbers = true)]
@@ -85,6 +88,13 @@ impl SolveArgs {
             if !t.is_finite() || t <= 0.0 {
                 return Err(Error::Parameter(format!(
                     "--thickness {t}: expected a positive length in model units"
+                )));
+            }
+        }
+        if let Some(l) = self.min_edge {
+            if !l.is_finite() || l <= 0.0 {
+                return Err(Error::Parameter(format!(
+                    "--min-edge {l}: expected a positive length in model units"
                 )));
             }
         }
@@ -121,6 +131,7 @@ impl SolveArgs {
                 ..SolverOptions::default()
             },
             thickness: self.thickness,
+            min_edge: self.min_edge,
         })
     }
 }

@@ -194,3 +194,40 @@ fn guided_axes_follow_the_normals_of_a_cylinder() {
         "the axes should tilt with the cylinder, max tilt {tilt}"
     );
 }
+
+#[test]
+fn a_minimum_edge_length_holds_after_optimization() {
+    let (base, surface) = lifted_hex_patch(Shape::Saddle, 1500);
+    let shortest = base
+        .faces
+        .iter()
+        .flat_map(|f| (0..f.len()).map(move |k| (f[k], f[(k + 1) % f.len()])))
+        .map(|(a, b)| (base.vertices[a] - base.vertices[b]).norm())
+        .fold(f64::INFINITY, f64::min);
+    let target = 1.05 * shortest;
+    let options = OptimizeOptions {
+        min_edge: Some(target),
+        solver: SolverOptions {
+            max_iterations: 15,
+            ..SolverOptions::default()
+        },
+        ..OptimizeOptions::default()
+    };
+    let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).expect("optimize");
+    let m = measure(&opt.honeycomb, &Surface::from_mesh(&surface).unwrap());
+    println!(
+        "shortest {shortest:.4} -> {:.6} (target {target:.4}); omega {:.2e} delta {:.2e}",
+        m.min_edge_length, m.omega_max_deg, m.delta_max
+    );
+    assert!(
+        m.min_edge_length >= target * (1.0 - 1e-6),
+        "{} < {target}",
+        m.min_edge_length
+    );
+    assert_meets_targets(Shape::Saddle, &m);
+    let bad = OptimizeOptions {
+        min_edge: Some(-1.0),
+        ..OptimizeOptions::default()
+    };
+    assert!(optimize(&base, Some(&surface), &bad, &mut |_| {}).is_err());
+}

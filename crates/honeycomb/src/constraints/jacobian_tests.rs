@@ -26,6 +26,8 @@ fn every_family_matches_finite_differences() {
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
     let normals = initial_normals(&mesh, &conn, &surface);
     let mut x = layout.pack(&mesh.vertices, &normals);
+    let min_edge = crate::optimize::min_edge_family(&mesh, &conn, 0.9);
+    x.extend(min_edge.initial_dummies(&mesh.vertices));
     for (i, xi) in x.iter_mut().enumerate() {
         *xi += 0.05 * jitter(i);
     }
@@ -34,6 +36,7 @@ fn every_family_matches_finite_differences() {
         ..Weights::default()
     };
     let mut fams = families(&mesh, &conn, &surface, &weights);
+    fams.push(Box::new(min_edge));
     let names: Vec<String> = fams.iter().map(|c| c.name().to_string()).collect();
     for expected in [
         "normalization",
@@ -43,6 +46,7 @@ fn every_family_matches_finite_differences() {
         "closeness",
         "fairness_opposite_walls",
         "guide_axes_along_normals",
+        "min_edge_length",
     ] {
         assert!(
             names.iter().any(|n| n == expected),

@@ -4,6 +4,7 @@
 mod boundary_curve;
 mod closeness;
 mod layout;
+mod min_edge_length;
 mod node_angle;
 mod normalization;
 mod opposite_walls;
@@ -13,6 +14,7 @@ mod wall_consistency;
 pub use boundary_curve::BoundaryCurve;
 pub use closeness::Closeness;
 pub use layout::Layout;
+pub use min_edge_length::MinEdgeLength;
 pub use node_angle::{Node2, Node3};
 pub use normalization::Normalization;
 pub use opposite_walls::OppositeWalls;

@@ -5,7 +5,9 @@ mod problem;
 mod weights;
 
 pub use frame::Frame;
-pub use problem::{boundary_vertices_on_surface_boundary, families, initial_normals};
+pub use problem::{
+    boundary_vertices_on_surface_boundary, families, initial_normals, min_edge_family,
+};
 pub use weights::Weights;
 
 use crate::constraints::Layout;
@@ -22,6 +24,8 @@ pub struct OptimizeOptions {
     pub solver: SolverOptions,
     /// Distance between M and M' in model units; `None`: 0.3 mean edge lengths.
     pub thickness: Option<f64>,
+    /// Every edge at least this long (model units), by dummy unknowns.
+    pub min_edge: Option<f64>,
 }
 
 /// The result of `optimize`, in model units.
@@ -58,8 +62,18 @@ pub fn optimize(
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
     let normals = initial_normals(&mesh, &conn, &normalized_surface);
     let mut x = layout.pack(&mesh.vertices, &normals);
-    let families = families(&mesh, &conn, &normalized_surface, &weights);
-    let mut solver = GuidedProjection::new(layout.len(), families)?;
+    let mut families = families(&mesh, &conn, &normalized_surface, &weights);
+    if let Some(length) = options.min_edge {
+        if !length.is_finite() || length <= 0.0 {
+            return Err(crate::Error::Parameter(format!(
+                "minimum edge length {length}: expected a positive length"
+            )));
+        }
+        let family = min_edge_family(&mesh, &conn, length / frame.unit);
+        x.extend(family.initial_dummies(&mesh.vertices));
+        families.push(Box::new(family));
+    }
+    let mut solver = GuidedProjection::new(x.len(), families)?;
     let solve = solver.solve(&mut x, &options.solver, progress)?;
 
     let vertices: Vec<Vec3> = (0..layout.num_vertices)

@@ -3,8 +3,8 @@
 
 use super::Weights;
 use crate::constraints::{
-    BoundaryCurve, Closeness, Layout, Node2, Node3, Normalization, OppositeWalls, PrescribedAxes,
-    WallConsistency,
+    BoundaryCurve, Closeness, Layout, MinEdgeLength, Node2, Node3, Normalization, OppositeWalls,
+    PrescribedAxes, WallConsistency,
 };
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
@@ -60,6 +60,19 @@ fn opposite_wall_pairs(mesh: &PolyMesh, conn: &Connectivity) -> Vec<[(usize, f64
         }
     }
     pairs
+}
+
+/// The minimum-edge-length family for `length` (normalized units), with its dummies placed
+/// right after the honeycomb's unknowns.
+pub fn min_edge_family(mesh: &PolyMesh, conn: &Connectivity, length: f64) -> MinEdgeLength {
+    let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+    MinEdgeLength {
+        layout,
+        edges: conn.edges.clone(),
+        length,
+        dummy_start: layout.len(),
+        weight: 1.0,
+    }
 }
 
 pub fn families<'a>(

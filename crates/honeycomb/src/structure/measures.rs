@@ -19,6 +19,8 @@ pub struct Measures {
     pub closeness_max: f64,
     pub closeness_avg: f64,
     pub mean_edge_length: f64,
+    /// The shortest edge of M (model units).
+    pub min_edge_length: f64,
     pub valence_histogram: BTreeMap<usize, usize>,
     /// Per node: the largest omega there (degrees).
     #[serde(skip)]
@@ -110,6 +112,11 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
         .sum::<f64>()
         / h.edges.len().max(1) as f64;
+    let min_edge_length = h
+        .edges
+        .iter()
+        .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
+        .fold(f64::INFINITY, f64::min);
     let closeness: Vec<f64> = h
         .base
         .vertices
@@ -126,6 +133,7 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         closeness_max: max(&closeness),
         closeness_avg: avg(&closeness),
         mean_edge_length,
+        min_edge_length,
         valence_histogram,
         omega_per_node,
         delta_per_wall,
