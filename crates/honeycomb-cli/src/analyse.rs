@@ -22,13 +22,18 @@ pub struct Args {
     pub quiet: bool,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    if !args.tolerance.is_finite() || args.tolerance <= 0.0 || args.tolerance >= 0.5 {
+/// The area tolerance of `analyse` and `render --spherical`.
+pub fn check_tolerance(tolerance: f64) -> Result<()> {
+    if !tolerance.is_finite() || tolerance <= 0.0 || tolerance >= 0.5 {
         return Err(Error::Parameter(format!(
-            "--tolerance {}: expected a positive area below 0.5 steradians",
-            args.tolerance
+            "--tolerance {tolerance}: expected a positive area below 0.5 steradians"
         )));
     }
+    Ok(())
+}
+
+pub fn run(args: Args) -> Result<()> {
+    check_tolerance(args.tolerance)?;
     let output = Output::from_flags(args.quiet, args.json);
     let (h, _) = read_structure(&args.dir)?;
     let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);

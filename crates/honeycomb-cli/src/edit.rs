@@ -71,13 +71,7 @@ pub fn run(args: Args) -> Result<()> {
             (sub, format!("subdivide with shrink {shrink}: {cells}"))
         }
         Operation::Reciprocal { by } => {
-            let mean = h
-                .edges
-                .iter()
-                .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
-                .sum::<f64>()
-                / h.edges.len().max(1) as f64;
-            let by = by.unwrap_or(0.1 * mean);
+            let by = by.unwrap_or(0.1 * h.base.mean_edge_length());
             let r = reciprocal(&h, &conn, by)?;
             t_junctions = r.t_junctions.len();
             let what = format!(

@@ -67,12 +67,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     let (h, _) = read_structure(&args.dir)?;
     if args.spherical {
-        if !args.tolerance.is_finite() || args.tolerance <= 0.0 || args.tolerance >= 0.5 {
-            return Err(Error::Parameter(format!(
-                "--tolerance {}: expected a positive area below 0.5 steradians",
-                args.tolerance
-            )));
-        }
+        crate::analyse::check_tolerance(args.tolerance)?;
         let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);
         return save(spherical_scene(&h.base.faces, &h.axes, &image, args.width));
     }

@@ -1,5 +1,6 @@
 //! Edits of a realized honeycomb that keep it a honeycomb (paper section 4).
 
+mod cell_walls;
 mod reciprocal;
 mod resize;
 mod subdivide;

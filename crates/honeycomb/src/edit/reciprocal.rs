@@ -84,8 +84,6 @@ pub fn reciprocal(h: &Honeycomb, conn: &Connectivity, t: f64) -> Result<Reciproc
             t * normals[e].dot(left).signum()
         })
         .collect();
-    let centroid =
-        |f: usize| faces[f].iter().fold(Vec3::ZERO, |s, &v| s + p[v]) / faces[f].len() as f64;
     // The cell each wall moved into.
     let moved_into: Vec<Option<usize>> = (0..h.edges.len())
         .map(|e| {
@@ -95,7 +93,7 @@ pub fn reciprocal(h: &Honeycomb, conn: &Connectivity, t: f64) -> Result<Reciproc
                 .iter()
                 .flatten()
                 .copied()
-                .find(|&f| (centroid(f) - mid).dot(normals[e] * lambda[e]) > 0.0)
+                .find(|&f| (h.base.face_centroid(f) - mid).dot(normals[e] * lambda[e]) > 0.0)
         })
         .collect();
 

@@ -2,6 +2,7 @@
 //! leaving its corners stay. At a corner the two cell walls move by +t and -t as seen from
 //! the corner, so the node condition holds for any t.
 
+use super::cell_walls::inward_walls;
 use super::translate_walls;
 use crate::error::{Error, Result};
 use crate::mesh::Connectivity;
@@ -20,22 +21,10 @@ pub fn resize_cell(h: &Honeycomb, conn: &Connectivity, cell: usize, by: f64) -> 
         return Err(Error::Parameter(format!("resize by {by}: not a number")));
     }
     let p = &h.base.vertices;
-    let centroid = face
-        .iter()
-        .fold(crate::geometry::Vec3::ZERO, |c, &v| c + p[v])
-        / face.len() as f64;
     let mut lambda = vec![0.0; h.edges.len()];
-    for (k, &e) in conn.face_edges[cell].iter().enumerate() {
-        let (a, b) = (face[k], face[(k + 1) % face.len()]);
-        // The wall normal seen from the edge's start, turned to point into the cell.
-        let s = conn.edge_sign(e, a);
-        let m = h.wall_normal(e) * s;
-        let inward = if m.dot(centroid - (p[a] + p[b]) * 0.5) >= 0.0 {
-            1.0
-        } else {
-            -1.0
-        };
-        lambda[e] = inward * by * s;
+    for (e, inward) in inward_walls(h, conn, cell, |e| h.wall_normal(e)) {
+        // lambda moves the wall along its stored normal n_e; inward is +-n_e.
+        lambda[e] = by * inward.dot(h.wall_normal(e));
     }
     let resized = translate_walls(h, conn, &lambda)?;
     // Refuse a resize that turns an edge of the cell or at its corners around.

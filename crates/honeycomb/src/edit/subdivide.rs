@@ -4,6 +4,7 @@
 //! unchanged, and angles are kept. Cells: one per old cell and one per interior wall (4x for a
 //! large hexagonal patch).
 
+use super::cell_walls::inward_walls;
 use super::translate::axis_plane_shift;
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
@@ -35,16 +36,8 @@ pub fn subdivide(
 
     for (c, face) in faces.iter().enumerate() {
         let n = face.len();
-        let centroid = face.iter().fold(Vec3::ZERO, |s, &v| s + p[v]) / n as f64;
-        // Each wall of the cell, seen from its start, turned inwards.
-        let inward: Vec<(usize, Vec3)> = (0..n)
-            .map(|k| {
-                let e = conn.face_edges[c][k];
-                let m = normals[e] * conn.edge_sign(e, face[k]);
-                let mid = (p[face[k]] + p[face[(k + 1) % n]]) * 0.5;
-                (e, if m.dot(centroid - mid) >= 0.0 { m } else { -m })
-            })
-            .collect();
+        let centroid = h.base.face_centroid(c);
+        let inward = inward_walls(h, conn, c, |e| normals[e]);
         let radius = inward
             .iter()
             .zip(face)

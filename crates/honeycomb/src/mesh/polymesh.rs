@@ -50,6 +50,12 @@ impl PolyMesh {
         c / (self.vertices.len().max(1) as f64)
     }
 
+    /// The centroid of face `f`'s corners.
+    pub fn face_centroid(&self, f: usize) -> Vec3 {
+        let face = &self.faces[f];
+        face.iter().fold(Vec3::ZERO, |c, &v| c + self.vertices[v]) / face.len() as f64
+    }
+
     /// A triangulation that makes a fair surface of a polygon mesh: quads split along a
     /// diagonal, larger faces by a star of triangles around their centroid (an added vertex).
     /// Unlike a fan from a corner, the star does not fold a non-convex or twisted cell.
