@@ -132,6 +132,7 @@ impl SolveArgs {
             },
             thickness: self.thickness,
             min_edge: self.min_edge,
+            ..OptimizeOptions::default()
         })
     }
 }

@@ -8,6 +8,7 @@ mod min_edge_length;
 mod node_angle;
 mod normalization;
 mod opposite_walls;
+mod parallel_mesh;
 mod prescribed_axes;
 mod wall_consistency;
 
@@ -18,6 +19,7 @@ pub use min_edge_length::MinEdgeLength;
 pub use node_angle::{Node2, Node3};
 pub use normalization::Normalization;
 pub use opposite_walls::OppositeWalls;
+pub use parallel_mesh::{ConstantDepth, EdgeParallelity, OffsetBlock, OffsetOnAxis};
 pub use prescribed_axes::PrescribedAxes;
 pub use wall_consistency::WallConsistency;
 

@@ -77,6 +77,17 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
     if conn.edges != s.edges {
         return Err(bad(0, "the edges do not match the faces".into()));
     }
-    let axes = s.node_axes.iter().map(|a| Vec3::from_slice(a)).collect();
-    Ok((Honeycomb::new(base, &conn, axes, s.thickness), conn))
+    let offset: Vec<Vec3> = s.offset_vertices.iter().map(|p| Vec3::from_slice(p)).collect();
+    if let Some(v) = offset.iter().position(|p| !p.is_finite()) {
+        return Err(bad(0, format!("offset vertex {v} is not finite")));
+    }
+    // M' as written (its depth may vary, as for parallel meshes), with the written axes.
+    let honeycomb = Honeycomb {
+        offset: PolyMesh::new(offset, base.faces.clone()),
+        base,
+        edges: conn.edges.clone(),
+        axes: s.node_axes.iter().map(|a| Vec3::from_slice(a)).collect(),
+        thickness: s.thickness,
+    };
+    Ok((honeycomb, conn))
 }

@@ -1,5 +1,5 @@
-//! The realized honeycomb: base mesh M, second mesh M' = v + thickness * axis (same vertex order
-//! and faces), and one wall quad `v_a v_b v'_b v'_a` per edge.
+//! The realized honeycomb: base mesh M, second mesh M' (same vertex order and faces, each v'_i
+//! on the node axis of v_i), and one wall quad `v_a v_b v'_b v'_a` per edge.
 
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
@@ -11,7 +11,8 @@ pub struct Honeycomb {
     pub offset: PolyMesh,
     pub edges: Vec<[usize; 2]>,
     pub axes: Vec<Vec3>,
-    /// Per-vertex distance between M and M' along the axis (model units).
+    /// Nominal distance between M and M' along the axes (model units): the constant offset of
+    /// `new`, the mean depth of `with_offset`.
     pub thickness: f64,
 }
 
@@ -31,6 +32,41 @@ impl Honeycomb {
             axes,
             thickness,
         }
+    }
+
+    /// A honeycomb whose second mesh M' is given vertex by vertex (parallel meshes: the depth
+    /// varies); the axes are the realized directions `v'_i - v_i`.
+    pub fn with_offset(base: PolyMesh, conn: &Connectivity, offset_vertices: Vec<Vec3>) -> Honeycomb {
+        let depths: Vec<f64> = base
+            .vertices
+            .iter()
+            .zip(&offset_vertices)
+            .map(|(&v, &w)| (w - v).norm())
+            .collect();
+        let axes = base
+            .vertices
+            .iter()
+            .zip(&offset_vertices)
+            .map(|(&v, &w)| (w - v).normalized())
+            .collect();
+        let thickness = depths.iter().sum::<f64>() / depths.len().max(1) as f64;
+        let offset = PolyMesh::new(offset_vertices, base.faces.clone());
+        Honeycomb {
+            base,
+            offset,
+            edges: conn.edges.clone(),
+            axes,
+            thickness,
+        }
+    }
+
+    /// Distance `|v'_i - v_i|` per vertex.
+    pub fn depths(&self) -> impl Iterator<Item = f64> + '_ {
+        self.base
+            .vertices
+            .iter()
+            .zip(&self.offset.vertices)
+            .map(|(&v, &w)| (w - v).norm())
     }
 
     /// The corners `v_a, v_b, v'_b, v'_a` of the wall of edge `e`.
