@@ -1,15 +1,19 @@
 //! `honeycomb optimize BASE [--surface S] ... -o DIR`
 
 use crate::progress::{IterationBar, Output};
+use honeycomb::analysis::{extruded_along_normals, read_directions, shading_report};
+use honeycomb::geometry::read_axes;
 use honeycomb::mesh::{
     nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
 };
-use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
+use honeycomb::optimize::{
+    optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, ParallelOptions, Weights,
+};
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
-use honeycomb::{Error, Result};
+use honeycomb::{Error, Result, Vec3};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -30,9 +34,9 @@ pub struct SolveArgs {
     /// Reference surface S (triangle/quad/polygon mesh); default: the base mesh itself.
     #[arg(long)]
     pub surface: Option<PathBuf>,
-    /// Maximum number of guided-projection iterations.
-    #[arg(long, default_value_t = 10, allow_negative_numbers = true)]
-    pub iterations: usize,
+    /// Maximum number of guided-projection iterations [default: 10, 20 with --light].
+    #[arg(long, allow_negative_numbers = true)]
+    pub iterations: Option<usize>,
     /// Distance between M and M' along the node axes, in model units (default 0.3 mean edge lengths).
     #[arg(long, allow_negative_numbers = true)]
     pub thickness: Option<f64>,
@@ -54,9 +58,39 @@ pub struct SolveArgs {
     /// Weight of opposite-wall fairness in hexagons (fades with the regularization).
     #[arg(long, default_value_t = Weights::default().fairness, allow_negative_numbers = true)]
     pub w_fair: f64,
-    /// Keep every edge at least this long (model units), by dummy unknowns.
+    /// Keep every edge at least this long (model units), by dummy unknowns [default with
+    /// --light: 0.3 mean edge lengths].
     #[arg(long, allow_negative_numbers = true)]
     pub min_edge: Option<f64>,
+    /// Parallel meshes (Fig. 9): solve for M' too, its vertices on the node axes and its edges
+    /// parallel to those of M (M' starts at --thickness along the surface normals).
+    #[arg(long)]
+    pub parallel: bool,
+    /// With --parallel: a soft constant depth |v_i - v'_i| = C (model units).
+    #[arg(long, requires = "parallel", allow_negative_numbers = true)]
+    pub depth: Option<f64>,
+    /// Weight of edge parallelity (with --parallel).
+    #[arg(long, default_value_t = ParallelOptions::default().weight, allow_negative_numbers = true)]
+    pub w_parallel: f64,
+    /// Weight of the constant depth (with --depth).
+    #[arg(long, default_value_t = ParallelOptions::default().depth_weight, allow_negative_numbers = true)]
+    pub w_depth: f64,
+    /// Prescribed node axes (Fig. 10): a text file with one direction "x y z" per base-mesh
+    /// vertex, in vertex order ("0 0 0" leaves a vertex free).
+    #[arg(long, conflicts_with = "light")]
+    pub axes: Option<PathBuf>,
+    /// Weight of the prescribed axes [default: 0.1, 0.03 with --light].
+    #[arg(long, allow_negative_numbers = true)]
+    pub w_axes: Option<f64>,
+    /// Shading (Fig. 18): the direction DX,DY,DZ the light travels in; the node axes are
+    /// prescribed across it (the surface normal with its component along the light removed),
+    /// and report.json compares the light share through the cells before and after.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub light: Option<Vec3>,
+    /// With --light: more light directions (e.g. a day's sun path), one "x y z" per line; each
+    /// gets its light share before and after in report.json.
+    #[arg(long, requires = "light")]
+    pub sun_path: Option<PathBuf>,
     /// Guide the node axes towards the surface normals in the first iterations, so that walls
     /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
     #[arg(long, default_value_t = Weights::default().guide, allow_negative_numbers = true)]
@@ -77,12 +111,30 @@ impl SolveArgs {
         Output::from_flags(self.quiet, self.json)
     }
 
+    /// The options that do not depend on the input meshes, checked.
     pub fn options(&self) -> Result<OptimizeOptions> {
-        if self.iterations == 0 || self.iterations > 10_000 {
+        let iterations = self
+            .iterations
+            .unwrap_or(if self.light.is_some() { 20 } else { 10 });
+        if iterations == 0 || iterations > 10_000 {
             return Err(Error::Parameter(format!(
-                "--iterations {}: expected 1 to 10000",
-                self.iterations
+                "--iterations {iterations}: expected 1 to 10000"
             )));
+        }
+        if let Some(light) = self.light {
+            unit_light(light).map_err(|_| {
+                Error::Parameter(format!(
+                    "--light {},{},{}: expected a non-zero direction",
+                    light.x, light.y, light.z
+                ))
+            })?;
+        }
+        if let Some(c) = self.depth {
+            if !c.is_finite() || c <= 0.0 {
+                return Err(Error::Parameter(format!(
+                    "--depth {c}: expected a positive length in model units"
+                )));
+            }
         }
         if let Some(t) = self.thickness {
             if !t.is_finite() || t <= 0.0 {
@@ -126,14 +178,76 @@ impl SolveArgs {
         Ok(OptimizeOptions {
             weights,
             solver: SolverOptions {
-                max_iterations: self.iterations,
+                max_iterations: iterations,
                 eps: self.eps,
                 ..SolverOptions::default()
             },
             thickness: self.thickness,
             min_edge: self.min_edge,
+            parallel: self.parallel.then_some(ParallelOptions {
+                depth: self.depth,
+                weight: self.w_parallel,
+                depth_weight: self.w_depth,
+            }),
             ..OptimizeOptions::default()
         })
+    }
+
+    /// Completes `options` with what depends on the inputs: prescribed axes (read from --axes or
+    /// built from --light on S) and the minimum edge length that shading needs.
+    fn add_axes(
+        &self,
+        options: &mut OptimizeOptions,
+        base: &PolyMesh,
+        surface: Option<&PolyMesh>,
+    ) -> Result<()> {
+        let targets = match (&self.axes, self.light) {
+            (Some(path), _) => read_axes(path, base.vertices.len())?,
+            (None, Some(light)) => {
+                let s = Surface::from_mesh(surface.unwrap_or(base))?;
+                // Walls tilted far from the normals collapse boundary edges without it.
+                options
+                    .min_edge
+                    .get_or_insert(0.3 * base.mean_edge_length());
+                shading_axes(&s, &base.vertices, light)?
+            }
+            (None, None) => return Ok(()),
+        };
+        let default = if self.light.is_some() {
+            AxesOptions::SHADING_WEIGHT
+        } else {
+            AxesOptions::DEFAULT_WEIGHT
+        };
+        let axes = AxesOptions {
+            targets,
+            weight: self.w_axes.unwrap_or(default),
+        };
+        axes.validate(base.vertices.len())
+            .map_err(|e| match (&self.axes, e) {
+                (Some(path), Error::Parameter(m)) => {
+                    Error::Parameter(format!("--axes {}: {m}", path.display()))
+                }
+                (_, e) => e,
+            })?;
+        options.axes = Some(axes);
+        Ok(())
+    }
+}
+
+/// `DX,DY,DZ` (or space separated) as a vector.
+fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
+    let parts: Vec<&str> = s
+        .split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|w| !w.is_empty())
+        .collect();
+    let numbers: Vec<f64> = parts
+        .iter()
+        .map(|w| w.parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| format!("`{s}`: expected three numbers DX,DY,DZ"))?;
+    match numbers[..] {
+        [x, y, z] if numbers.iter().all(|v| v.is_finite()) => Ok(Vec3::new(x, y, z)),
+        _ => Err(format!("`{s}`: expected three finite numbers DX,DY,DZ")),
     }
 }
 
@@ -155,7 +269,12 @@ pub fn optimize_and_write(
     args: &SolveArgs,
     dir: &Path,
 ) -> Result<Report> {
-    let options = args.options()?;
+    let mut options = args.options()?;
+    args.add_axes(&mut options, base, surface)?;
+    let sun_path = match &args.sun_path {
+        Some(path) => read_directions(path)?,
+        None => Vec::new(),
+    };
     // Before the solve, so that an unusable -o fails at once, not after a long run.
     if dir.exists() && !dir.is_dir() {
         return Err(Error::Parameter(format!(
@@ -186,7 +305,21 @@ pub fn optimize_and_write(
     let seconds = start.elapsed().as_secs_f64();
     let model_surface = Surface::from_mesh(surface.unwrap_or(base))?;
     let measures = measure(&optimized.honeycomb, &model_surface);
-    let report = Report::new(&optimized, &measures, &options.weights, seconds);
+    let mut report = Report::new(&optimized, &measures, &options.weights, seconds);
+    if let Some(light) = args.light {
+        let before = extruded_along_normals(
+            base,
+            &optimized.connectivity,
+            &model_surface,
+            optimized.honeycomb.thickness,
+        );
+        report.shading = Some(shading_report(
+            &before,
+            &optimized.honeycomb,
+            light,
+            &sun_path,
+        ));
+    }
     honeycomb::export::write_structure(dir, &optimized.honeycomb, &report)?;
     match output {
         Output::Json => println!(

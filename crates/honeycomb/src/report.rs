@@ -1,8 +1,11 @@
 //! `report.json`: the Figure 16 row of a run and everything needed to judge it.
 
+use crate::analysis::ShadingReport;
 use crate::optimize::{Optimized, Weights};
 use crate::solve::{FamilyResidual, IterationInfo};
-use crate::structure::{Honeycomb, Measures};
+use crate::structure::{
+    axes_measures, parallel_measures, AxesMeasures, Honeycomb, Measures, ParallelMeasures,
+};
 use serde::Serialize;
 
 #[derive(Clone, Debug, Serialize)]
@@ -19,6 +22,15 @@ pub struct Report {
     #[serde(flatten)]
     pub measures: Measures,
     pub thickness: f64,
+    /// Parallel meshes: beta (edge parallelity of M and M') and depth, as top-level keys.
+    #[serde(flatten)]
+    pub parallel: Option<ParallelMeasures>,
+    /// Prescribed axes: the angle of the realized axes to their targets, as top-level keys.
+    #[serde(flatten)]
+    pub axes: Option<AxesMeasures>,
+    /// Shading: the light share before and after, for the design light and a sun path.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shading: Option<ShadingReport>,
     /// Wall time of the whole optimization (symbolic analysis included).
     pub seconds: f64,
     pub seconds_symbolic: f64,
@@ -50,6 +62,12 @@ impl Report {
             converged: s.converged,
             measures: m.clone(),
             thickness: opt.honeycomb.thickness,
+            parallel: opt.parallel.then(|| parallel_measures(&opt.honeycomb)),
+            axes: opt
+                .prescribed_axes
+                .as_ref()
+                .map(|targets| axes_measures(&opt.honeycomb, targets)),
+            shading: None,
             seconds,
             seconds_symbolic: s.seconds_symbolic,
             seconds_assembly: s.seconds_assembly,

@@ -64,6 +64,64 @@ fn every_family_matches_finite_differences() {
     }
 }
 
+/// The variants' families, built the way `optimize` builds them: parallel meshes with a
+/// constant depth, prescribed axes, the minimum edge length and the boundary orientation guard.
+#[test]
+fn variant_families_match_finite_differences() {
+    use crate::optimize::{AxesOptions, OptimizeOptions, ParallelOptions, Problem};
+    let (base, surface) = lifted_hex_patch(Shape::Saddle, 200);
+    let frame = Frame::of(&base);
+    let mesh = frame.to_normalized(&base);
+    let surface = Surface::from_mesh(&frame.to_normalized(&surface)).unwrap();
+    let conn = Connectivity::build(&mesh).unwrap();
+    let options = OptimizeOptions {
+        min_edge: Some(0.5 * frame.unit),
+        parallel: Some(ParallelOptions {
+            depth: Some(0.4 * frame.unit),
+            ..ParallelOptions::default()
+        }),
+        axes: Some(AxesOptions {
+            targets: (0..mesh.vertices.len())
+                .map(|v| crate::Vec3::new(jitter(3 * v), jitter(3 * v + 1), 2.0))
+                .collect(),
+            weight: 0.1,
+        }),
+        ..OptimizeOptions::default()
+    };
+    let mut problem = Problem::build(&mesh, &conn, &surface, &options, &options.weights, &frame);
+    for (i, xi) in problem.x.iter_mut().enumerate() {
+        *xi += 0.05 * jitter(i + 11);
+    }
+    let names: Vec<String> = problem
+        .families
+        .iter()
+        .map(|c| c.name().to_string())
+        .collect();
+    for expected in [
+        "offset_on_axis",
+        "edge_parallelity",
+        "constant_depth",
+        "prescribed_axes",
+        "node_orientation_valence2",
+        "min_edge_length",
+    ] {
+        assert!(
+            names.iter().any(|n| n == expected),
+            "family {expected} missing: {names:?}"
+        );
+    }
+    let x = problem.x.clone();
+    for c in &mut problem.families {
+        c.refresh(&x);
+        let err = jacobian_fd_error(c.as_ref(), &x, 1e-6);
+        assert!(
+            err < 1e-7,
+            "{}: Jacobian deviates from finite differences by {err}",
+            c.name()
+        );
+    }
+}
+
 #[test]
 fn boundary_curve_matches_finite_differences() {
     // S is the base mesh itself, so every boundary vertex starts on S's boundary.

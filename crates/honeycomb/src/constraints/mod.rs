@@ -6,10 +6,13 @@ mod closeness;
 mod layout;
 mod min_edge_length;
 mod node_angle;
+mod node_orientation;
 mod normalization;
 mod opposite_walls;
 mod parallel_mesh;
+mod polyline_fairness;
 mod prescribed_axes;
+mod quad_planarity;
 mod wall_consistency;
 
 pub use boundary_curve::BoundaryCurve;
@@ -17,10 +20,13 @@ pub use closeness::Closeness;
 pub use layout::Layout;
 pub use min_edge_length::MinEdgeLength;
 pub use node_angle::{Node2, Node3};
+pub use node_orientation::NodeOrientation;
 pub use normalization::Normalization;
 pub use opposite_walls::OppositeWalls;
 pub use parallel_mesh::{ConstantDepth, EdgeParallelity, OffsetBlock, OffsetOnAxis};
+pub use polyline_fairness::{LateralRun, StraightFairness, ZigzagFairness};
 pub use prescribed_axes::PrescribedAxes;
+pub use quad_planarity::{QuadNormalBlock, QuadNormalization, QuadPlanarity};
 pub use wall_consistency::WallConsistency;
 
 #[cfg(test)]

@@ -109,7 +109,11 @@ impl Constraint for EdgeParallelity {
             let d = self.layout.vertex_at(x, a) - self.layout.vertex_at(x, b);
             let dp = self.offset.vertex_at(x, a) - self.offset.vertex_at(x, b);
             let c = d.cross(dp);
-            let axes = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 0.0, 1.0)];
+            let axes = [
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                Vec3::new(0.0, 0.0, 1.0),
+            ];
             for (k, ek) in axes.into_iter().enumerate() {
                 let row = 3 * e + k;
                 res[row] = c.to_array()[k];

@@ -77,7 +77,11 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
     if conn.edges != s.edges {
         return Err(bad(0, "the edges do not match the faces".into()));
     }
-    let offset: Vec<Vec3> = s.offset_vertices.iter().map(|p| Vec3::from_slice(p)).collect();
+    let offset: Vec<Vec3> = s
+        .offset_vertices
+        .iter()
+        .map(|p| Vec3::from_slice(p))
+        .collect();
     if let Some(v) = offset.iter().position(|p| !p.is_finite()) {
         return Err(bad(0, format!("offset vertex {v} is not finite")));
     }

@@ -2,18 +2,21 @@
 
 mod frame;
 mod problem;
+mod quads;
 mod variants;
 mod weights;
 
 pub use frame::Frame;
 pub use problem::{
-    boundary_vertices_on_surface_boundary, families, initial_normals, min_edge_family,
+    boundary_vertices_on_surface_boundary, families, initial_normals, min_edge_family, node_walls,
 };
+pub use quads::{QuadOptions, QuadPattern};
 pub use variants::{shading_axes, unit_light, AxesOptions, ParallelOptions};
 pub use weights::Weights;
 
 use crate::constraints::{
-    ConstantDepth, EdgeParallelity, Layout, OffsetBlock, OffsetOnAxis, PrescribedAxes,
+    ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
+    PrescribedAxes,
 };
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
@@ -35,6 +38,8 @@ pub struct OptimizeOptions {
     pub parallel: Option<ParallelOptions>,
     /// Prescribed node axes (also the shading system's).
     pub axes: Option<AxesOptions>,
+    /// Quadrangulation: every hexagon split into two planar quads (Figs. 1, 11, 17).
+    pub quads: Option<QuadOptions>,
 }
 
 impl OptimizeOptions {
@@ -60,6 +65,9 @@ impl OptimizeOptions {
         if let Some(a) = &self.axes {
             a.validate(num_vertices)?;
         }
+        if let Some(q) = &self.quads {
+            q.validate()?;
+        }
         Ok(())
     }
 }
@@ -74,6 +82,12 @@ pub struct Optimized {
     pub frame: Frame,
     /// The unit prescribed axes (zero where none), when axes were prescribed.
     pub prescribed_axes: Option<Vec<Vec3>>,
+    /// M' was solved for as a mesh parallel to M.
+    pub parallel: bool,
+    /// With quads: the quad cover on the optimized M (split quads first, then unsplit cells).
+    pub quads: Option<PolyMesh>,
+    /// With quads: how the cells were split (the quads to measure, the polylines).
+    pub quad_cover: Option<crate::structure::QuadCover>,
 }
 
 /// The unknowns and constraint families of one optimization, in the normalized frame.
@@ -84,6 +98,8 @@ pub struct Problem<'a> {
     pub families: Vec<Box<dyn Constraint + 'a>>,
     /// Where M' lives, with parallel meshes.
     pub offset: Option<OffsetBlock>,
+    /// How the cells are split, with quads.
+    pub quads: Option<crate::structure::QuadCover>,
 }
 
 impl<'a> Problem<'a> {
@@ -97,7 +113,22 @@ impl<'a> Problem<'a> {
         frame: &Frame,
     ) -> Problem<'a> {
         let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
-        let normals = initial_normals(mesh, conn, surface);
+        let mut normals = initial_normals(mesh, conn, surface);
+        if let Some(a) = &options.axes {
+            // Walls that already contain the prescribed axes: a wall normal turning far from its
+            // start (through the linearization) can come out flipped and meet its neighbour at 60
+            // instead of 120 degrees.
+            let targets = a.unit_targets();
+            for (e, &[i, j]) in conn.edges.iter().enumerate() {
+                let n_side = surface.normal_at((mesh.vertices[i] + mesh.vertices[j]) * 0.5);
+                let oriented = |t: Vec3| if t.dot(n_side) < 0.0 { -t } else { t };
+                let t = oriented(targets[i]) + oriented(targets[j]);
+                let n = (mesh.vertices[i] - mesh.vertices[j]).normalized().cross(t);
+                if n.norm() > 1e-3 {
+                    normals[e] = n.normalized();
+                }
+            }
+        }
         let mut x = layout.pack(&mesh.vertices, &normals);
         let mut families = families(mesh, conn, surface, weights);
         if let Some(length) = options.min_edge {
@@ -105,6 +136,24 @@ impl<'a> Problem<'a> {
             debug_assert_eq!(family.dummy_start, x.len());
             x.extend(family.initial_dummies(&mesh.vertices));
             families.push(Box::new(family));
+        }
+        // With prescribed axes the walls turn far from where they start, and a node could settle
+        // in the mirrored solution (a valence-2 node at 60 degrees, a flipped wall normal): every
+        // node keeps the side of its walls (see NodeOrientation). Without axes the guard is left
+        // out: on bases with non-convex cells (hexagonalminimal) it fought the start and left
+        // omega at 0.75 degrees instead of 3e-4.
+        let (node3, node2) = node_walls(conn);
+        let guarded: Vec<&[(usize, f64)]> = if options.axes.is_some() {
+            let two = node2.iter().map(|w| &w[..]);
+            two.chain(node3.iter().map(|w| &w[..])).collect()
+        } else {
+            Vec::new()
+        };
+        if !guarded.is_empty() {
+            let guard =
+                NodeOrientation::new(layout, &conn.edges, &guarded, &x, x.len(), weights.angle);
+            x.extend(guard.initial_dummies(&x));
+            families.push(Box::new(guard));
         }
         let mut offset = None;
         if let Some(p) = &options.parallel {
@@ -155,11 +204,25 @@ impl<'a> Problem<'a> {
                 role: Role::Condition,
             }));
         }
+        let quad_cover = options.quads.as_ref().map(|q| {
+            let w_norm = weights.normalization;
+            quads::add_quads(
+                mesh,
+                conn,
+                surface,
+                q,
+                layout,
+                w_norm,
+                &mut x,
+                &mut families,
+            )
+        });
         Problem {
             layout,
             x,
             families,
             offset,
+            quads: quad_cover,
         }
     }
 }
@@ -187,6 +250,7 @@ pub fn optimize(
 
     let problem = Problem::build(&mesh, &conn, &normalized_surface, options, &weights, &frame);
     let (layout, offset, mut x) = (problem.layout, problem.offset, problem.x);
+    let quad_cover = problem.quads;
     let mut solver = GuidedProjection::new(x.len(), problem.families)?;
     let solve = solver.solve(&mut x, &options.solver, progress)?;
 
@@ -197,6 +261,7 @@ pub fn optimize(
         .map(|e| layout.normal_at(&x, e).normalized())
         .collect();
     let optimized = PolyMesh::new(vertices, base.faces.clone());
+    let quads = quad_cover.as_ref().map(|c| c.mesh(&optimized.vertices));
     let honeycomb = match offset {
         // Parallel meshes: M' is the solved second mesh itself.
         Some(block) => {
@@ -220,5 +285,8 @@ pub fn optimize(
         solve,
         frame,
         prescribed_axes: options.axes.as_ref().map(AxesOptions::unit_targets),
+        parallel: options.parallel.is_some(),
+        quads,
+        quad_cover,
     })
 }

@@ -75,6 +75,22 @@ pub fn min_edge_family(mesh: &PolyMesh, conn: &Connectivity, length: f64) -> Min
     }
 }
 
+/// The walls (edge, sign seen from the node) at every node of valence 3 and of valence 2.
+#[allow(clippy::type_complexity)]
+pub fn node_walls(conn: &Connectivity) -> (Vec<[(usize, f64); 3]>, Vec<[(usize, f64); 2]>) {
+    let mut node3 = Vec::new();
+    let mut node2 = Vec::new();
+    for (v, edges) in conn.vertex_edges.iter().enumerate() {
+        let walls: Vec<(usize, f64)> = edges.iter().map(|&e| (e, conn.edge_sign(e, v))).collect();
+        match walls.len() {
+            3 => node3.push([walls[0], walls[1], walls[2]]),
+            2 => node2.push([walls[0], walls[1]]),
+            _ => {} // rejected by validation before we get here
+        }
+    }
+    (node3, node2)
+}
+
 pub fn families<'a>(
     mesh: &PolyMesh,
     conn: &Connectivity,
@@ -82,21 +98,7 @@ pub fn families<'a>(
     weights: &Weights,
 ) -> Vec<Box<dyn Constraint + 'a>> {
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
-    let node_edges = |v: usize| {
-        conn.vertex_edges[v]
-            .iter()
-            .map(move |&e| (e, conn.edge_sign(e, v)))
-    };
-    let mut node3 = Vec::new();
-    let mut node2 = Vec::new();
-    for v in 0..mesh.vertices.len() {
-        let edges: Vec<(usize, f64)> = node_edges(v).collect();
-        match edges.len() {
-            3 => node3.push([edges[0], edges[1], edges[2]]),
-            2 => node2.push([edges[0], edges[1]]),
-            _ => {} // rejected by validation before we get here
-        }
-    }
+    let (node3, node2) = node_walls(conn);
     let mut families: Vec<Box<dyn Constraint + 'a>> = vec![
         Box::new(Normalization {
             layout,
@@ -141,7 +143,9 @@ pub fn families<'a>(
         let ends = (0..mesh.vertices.len())
             .flat_map(|v| {
                 let a = surface.normal_at(mesh.vertices[v]);
-                node_edges(v).map(move |(e, s)| (e, s, a))
+                conn.vertex_edges[v]
+                    .iter()
+                    .map(move |&e| (e, conn.edge_sign(e, v), a))
             })
             .collect();
         families.push(Box::new(PrescribedAxes {

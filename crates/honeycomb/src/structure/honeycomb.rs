@@ -36,7 +36,11 @@ impl Honeycomb {
 
     /// A honeycomb whose second mesh M' is given vertex by vertex (parallel meshes: the depth
     /// varies); the axes are the realized directions `v'_i - v_i`.
-    pub fn with_offset(base: PolyMesh, conn: &Connectivity, offset_vertices: Vec<Vec3>) -> Honeycomb {
+    pub fn with_offset(
+        base: PolyMesh,
+        conn: &Connectivity,
+        offset_vertices: Vec<Vec3>,
+    ) -> Honeycomb {
         let depths: Vec<f64> = base
             .vertices
             .iter()

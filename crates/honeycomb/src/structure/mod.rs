@@ -3,7 +3,15 @@
 mod axes;
 mod honeycomb;
 mod measures;
+mod quad_cover;
+mod quad_measures;
+mod variant_measures;
 
 pub use axes::node_axes;
 pub use honeycomb::{Honeycomb, StructureJson};
 pub use measures::{measure, node_angles, quad_planarity, Measures};
+pub use quad_cover::{EdgeClasses, QuadCover, QuadPattern, StraightRun, ZigzagRun};
+pub use quad_measures::{face_measures, quad_mesh_measures, FaceMeasures};
+pub use variant_measures::{
+    angle_deg, axes_measures, parallel_measures, AxesMeasures, ParallelMeasures,
+};

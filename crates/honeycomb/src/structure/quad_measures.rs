@@ -1,0 +1,65 @@
+//! Planarity of the capping quads (DESIGN.md section 3, `delta_face`), from realized vertices.
+
+use super::quad_planarity;
+use crate::geometry::Vec3;
+use crate::mesh::PolyMesh;
+use serde::Serialize;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct FaceMeasures {
+    /// Distance between a quad's diagonals over its mean edge length.
+    pub delta_face_max: f64,
+    pub delta_face_avg: f64,
+    /// How many quads were measured.
+    pub quads: usize,
+}
+
+/// Planarity of the given quads (e.g. `QuadCover::quads`) on `vertices`.
+pub fn face_measures(vertices: &[Vec3], quads: &[[usize; 4]]) -> FaceMeasures {
+    let deltas: Vec<f64> = quads
+        .iter()
+        .map(|q| quad_planarity(q.map(|v| vertices[v])))
+        .collect();
+    FaceMeasures {
+        delta_face_max: deltas.iter().copied().fold(0.0, f64::max),
+        delta_face_avg: deltas.iter().sum::<f64>() / deltas.len().max(1) as f64,
+        quads: deltas.len(),
+    }
+}
+
+/// Planarity of the first `split` faces of a quad-cover mesh (`QuadCover::mesh` lists the split
+/// quads first; the unsplit cells after them are not required to be planar).
+pub fn quad_mesh_measures(mesh: &PolyMesh, split: usize) -> FaceMeasures {
+    let quads: Vec<[usize; 4]> = mesh
+        .faces
+        .iter()
+        .take(split)
+        .filter_map(|f| <[usize; 4]>::try_from(f.as_slice()).ok())
+        .collect();
+    face_measures(&mesh.vertices, &quads)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_planar_quad_measures_zero_and_a_twisted_one_does_not() {
+        let p = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.1),
+        ];
+        let m = face_measures(&p, &[[0, 1, 2, 3], [0, 1, 2, 4]]);
+        assert_eq!(m.quads, 2);
+        // Diagonals (1, 1, 0) and (-1, 1, 0.1) through the origin and (1, 0, 0).
+        let distance = 0.1 / 4.02f64.sqrt();
+        let mean_edge = (2.0 + 2.0 * 1.01f64.sqrt()) / 4.0;
+        assert!((m.delta_face_max - distance / mean_edge).abs() < 1e-12);
+        assert!((m.delta_face_avg - m.delta_face_max / 2.0).abs() < 1e-12);
+        let mesh = PolyMesh::new(p, vec![vec![0, 1, 2, 3], vec![0, 1, 2, 4]]);
+        assert_eq!(quad_mesh_measures(&mesh, 1).delta_face_max, 0.0);
+    }
+}
