@@ -7,7 +7,8 @@ use honeycomb::mesh::{
     nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
 };
 use honeycomb::optimize::{
-    optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, ParallelOptions, Weights,
+    optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, ParallelOptions, QuadOptions,
+    QuadPattern, Weights,
 };
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
@@ -67,7 +68,7 @@ pub struct SolveArgs {
     #[arg(long)]
     pub parallel: bool,
     /// With --parallel: a soft constant depth |v_i - v'_i| = C (model units).
-    #[arg(long, requires = "parallel", allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true)]
     pub depth: Option<f64>,
     /// Weight of edge parallelity (with --parallel).
     #[arg(long, default_value_t = ParallelOptions::default().weight, allow_negative_numbers = true)]
@@ -89,8 +90,26 @@ pub struct SolveArgs {
     pub light: Option<Vec3>,
     /// With --light: more light directions (e.g. a day's sun path), one "x y z" per line; each
     /// gets its light share before and after in report.json.
-    #[arg(long, requires = "light")]
+    #[arg(long)]
     pub sun_path: Option<PathBuf>,
+    /// Cap every hexagon with two planar quads (Figs. 1, 11, 17), written to quads.obj:
+    /// `zigzag` splits all cells along one lattice direction, `alternating` splits neighbouring
+    /// strips along the other two by turns.
+    #[arg(long, value_name = "zigzag|alternating")]
+    pub quads: Option<QuadPattern>,
+    /// With --quads: the straight polylines follow the lattice direction closest to DX,DY,DZ
+    /// [default: the direction whose quads start closest to planar].
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub quad_direction: Option<Vec3>,
+    /// Weight of quad planarity (the paper's w_cons^faces).
+    #[arg(long, default_value_t = QuadOptions::default().w_cons_faces, allow_negative_numbers = true)]
+    pub w_cons_faces: f64,
+    /// Weight of zigzag-polyline fairness (the paper's w_fair^zig).
+    #[arg(long, default_value_t = QuadOptions::default().w_fair_zigzag, allow_negative_numbers = true)]
+    pub w_fair_zig: f64,
+    /// Weight of straight-polyline fairness (the paper's w_fair^str).
+    #[arg(long, default_value_t = QuadOptions::default().w_fair_straight, allow_negative_numbers = true)]
+    pub w_fair_str: f64,
     /// Guide the node axes towards the surface normals in the first iterations, so that walls
     /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
     #[arg(long, default_value_t = Weights::default().guide, allow_negative_numbers = true)]
@@ -120,6 +139,26 @@ impl SolveArgs {
             return Err(Error::Parameter(format!(
                 "--iterations {iterations}: expected 1 to 10000"
             )));
+        }
+        // Checked here rather than by clap, whose message spans several lines.
+        for (given, flag, needs, present) in [
+            (self.depth.is_some(), "--depth", "--parallel", self.parallel),
+            (
+                self.sun_path.is_some(),
+                "--sun-path",
+                "--light",
+                self.light.is_some(),
+            ),
+            (
+                self.quad_direction.is_some(),
+                "--quad-direction",
+                "--quads",
+                self.quads.is_some(),
+            ),
+        ] {
+            if given && !present {
+                return Err(Error::Parameter(format!("{flag} needs {needs}")));
+            }
         }
         if let Some(light) = self.light {
             unit_light(light).map_err(|_| {
@@ -175,8 +214,26 @@ impl SolveArgs {
             "--w-fair",
             "--w-guide",
         ])?;
+        let quads = match self.quads {
+            Some(pattern) => {
+                let quads = QuadOptions {
+                    pattern,
+                    direction: self.quad_direction,
+                    w_cons_faces: self.w_cons_faces,
+                    w_fair_zigzag: self.w_fair_zig,
+                    w_fair_straight: self.w_fair_str,
+                };
+                quads.validate().map_err(|e| match e {
+                    Error::Parameter(m) => Error::Parameter(format!("--quads: {m}")),
+                    e => e,
+                })?;
+                Some(quads)
+            }
+            None => None,
+        };
         Ok(OptimizeOptions {
             weights,
+            quads,
             solver: SolverOptions {
                 max_iterations: iterations,
                 eps: self.eps,
@@ -320,7 +377,8 @@ pub fn optimize_and_write(
             &sun_path,
         ));
     }
-    honeycomb::export::write_structure(dir, &optimized.honeycomb, &report)?;
+    let quads: Vec<(&str, &PolyMesh)> = optimized.quads.iter().map(|q| ("quads.obj", q)).collect();
+    honeycomb::export::write_structure_with(dir, &optimized.honeycomb, &quads, &report)?;
     match output {
         Output::Json => println!(
             "{}",

@@ -4,7 +4,8 @@ use crate::analysis::ShadingReport;
 use crate::optimize::{Optimized, Weights};
 use crate::solve::{FamilyResidual, IterationInfo};
 use crate::structure::{
-    axes_measures, parallel_measures, AxesMeasures, Honeycomb, Measures, ParallelMeasures,
+    axes_measures, parallel_measures, quad_mesh_measures, AxesMeasures, FaceMeasures, Honeycomb,
+    Measures, ParallelMeasures, QuadPattern,
 };
 use serde::Serialize;
 
@@ -28,6 +29,10 @@ pub struct Report {
     /// Prescribed axes: the angle of the realized axes to their targets, as top-level keys.
     #[serde(flatten)]
     pub axes: Option<AxesMeasures>,
+    /// Quad cover: the pattern and the planarity of its quads (`delta_face_max/avg`), as
+    /// top-level keys.
+    #[serde(flatten)]
+    pub quads: Option<QuadCoverReport>,
     /// Shading: the light share before and after, for the design light and a sun path.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shading: Option<ShadingReport>,
@@ -46,6 +51,14 @@ pub struct Report {
     /// Solver residuals per constraint family after the last step (normalized frame).
     pub residuals: Vec<FamilyResidual>,
     pub history: Vec<IterationInfo>,
+}
+
+/// The quads that cap the cells, measured on the realized quad mesh.
+#[derive(Clone, Debug, Serialize)]
+pub struct QuadCoverReport {
+    pub quad_pattern: QuadPattern,
+    #[serde(flatten)]
+    pub faces: FaceMeasures,
 }
 
 impl Report {
@@ -67,6 +80,17 @@ impl Report {
                 .prescribed_axes
                 .as_ref()
                 .map(|targets| axes_measures(&opt.honeycomb, targets)),
+            quads: opt
+                .quads
+                .as_ref()
+                .zip(opt.quad_cover.as_ref())
+                .map(|(mesh, cover)| {
+                    QuadCoverReport {
+                        quad_pattern: cover.pattern,
+                        // From the written quad mesh, whose split quads come first.
+                        faces: quad_mesh_measures(mesh, cover.quads.len()),
+                    }
+                }),
             shading: None,
             seconds,
             seconds_symbolic: s.seconds_symbolic,

@@ -1,25 +1,31 @@
 //! Quadrangulation (paper section 4, Figs. 1, 11, 17): honeycombs capped by planar quads.
 
-use honeycomb::generate::{hex_disk, lifted_hex_patch, Shape};
+use honeycomb::generate::hex_disk;
 use honeycomb::mesh::PolyMesh;
-use honeycomb::optimize::{optimize, OptimizeOptions, Optimized, QuadOptions, QuadPattern};
+use honeycomb::optimize::{
+    optimize, OptimizeOptions, Optimized, QuadOptions, QuadPattern, Weights,
+};
 use honeycomb::solve::SolverOptions;
-use honeycomb::structure::{face_measures, measure, FaceMeasures, Measures, QuadCover};
+use honeycomb::structure::{face_measures, measure, FaceMeasures, Measures};
 use honeycomb::surface::Surface;
 use honeycomb::Vec3;
 use std::time::Instant;
 
 /// The "roof": an undulating rectangular sheet, twice as long as wide, in the spirit of the
 /// Cour Visconti roof (Fig. 1): one and a half waves along its length, a half wave across, so
-/// that it has both dome-like and saddle-like regions (|V| about `vertices`, edge length 1,
-/// curvature radii down to about 25 edge lengths).
-fn roof(vertices: usize) -> (PolyMesh, PolyMesh) {
+/// that it has both dome-like and saddle-like regions (|V| about `vertices`, edge length 1).
+/// With `amplitude` 0.08 the curvature radii go down to about 40 edge lengths (about those of
+/// the Louvre roof at 3.5k vertices), with 0.12 to about 25.
+fn roof(vertices: usize, amplitude: f64) -> (PolyMesh, PolyMesh) {
     // A hexagon of edge 1 has area 3 sqrt(3) / 2 and about two vertices.
     let area = vertices as f64 / 2.0 * 1.5 * 3f64.sqrt();
     let (a, b) = ((area / 2.0).sqrt(), (area / 8.0).sqrt());
     let height = |x: f64, y: f64| {
         let (u, v) = (x / a, y / b);
-        0.12 * a * (1.5 * std::f64::consts::PI * u).sin() * (0.5 * std::f64::consts::PI * v).cos()
+        amplitude
+            * a
+            * (1.5 * std::f64::consts::PI * u).sin()
+            * (0.5 * std::f64::consts::PI * v).cos()
             - 0.05 * a * u * v
     };
     let disk = hex_disk(1.05 * (a * a + b * b).sqrt());
@@ -71,41 +77,21 @@ struct Run {
     honeycomb: Measures,
     faces: FaceMeasures,
     initial_faces: FaceMeasures,
-    seconds: f64,
 }
 
-#[derive(Clone, Copy, Debug)]
-enum Subject {
-    Patch(Shape),
-    Roof,
-}
-
-fn run(subject: Subject, vertices: usize, iterations: usize, quads: QuadOptions) -> Run {
-    run_with(subject, vertices, iterations, quads, 1.0)
-}
-
-fn run_with(
-    subject: Subject,
-    vertices: usize,
-    iterations: usize,
-    quads: QuadOptions,
-    closeness: f64,
-) -> Run {
-    let (base, surface) = match subject {
-        Subject::Patch(shape) => lifted_hex_patch(shape, vertices),
-        Subject::Roof => roof(vertices),
-    };
+/// Optimizes the roof capped by quads for 5 iterations (the paper's Figure 16 row) and measures
+/// the realized quads, before and after.
+fn run(amplitude: f64, quads: QuadOptions, closeness: f64) -> Run {
+    let (base, surface) = roof(3500, amplitude);
     let options = OptimizeOptions {
         solver: SolverOptions {
-            max_iterations: iterations,
-            eps: env("EPS", 1e-3),
+            max_iterations: 5,
             ..SolverOptions::default()
         },
         quads: Some(quads.clone()),
-        weights: honeycomb::optimize::Weights {
+        weights: Weights {
             closeness,
-            fairness: env("FW", 3.0),
-            ..Default::default()
+            ..Weights::default()
         },
         ..OptimizeOptions::default()
     };
@@ -115,6 +101,7 @@ fn run_with(
     let honeycomb = measure(&opt.honeycomb, &Surface::from_mesh(&surface).unwrap());
     let cover = opt.quad_cover.as_ref().expect("quad cover");
     let quad_mesh = opt.quads.as_ref().expect("quad mesh");
+    // The quad mesh is M itself, its split quads first.
     assert_eq!(quad_mesh.vertices, opt.honeycomb.base.vertices);
     for (f, q) in quad_mesh.faces.iter().zip(&cover.quads) {
         assert_eq!(f.as_slice(), q.as_slice());
@@ -122,8 +109,8 @@ fn run_with(
     let faces = face_measures(&quad_mesh.vertices, &cover.quads);
     let initial_faces = face_measures(&base.vertices, &cover.quads);
     println!(
-        "{subject:?} {:?} |V|={} it={} T={seconds:.3}s | delta_face {:.2e}/{:.2e} (initially \
-         {:.2e}/{:.2e}) | omega {:.2e}/{:.2e} deg | delta {:.2e}/{:.2e} | closeness {:.2e}/{:.2e}",
+        "{:?} |V|={} it={} T={seconds:.3}s | delta_face {:.2e}/{:.2e} (initially {:.2e}/{:.2e}) \
+         | omega {:.2e}/{:.2e} deg | delta {:.2e}/{:.2e} | closeness {:.2e}/{:.2e}",
         quads.pattern,
         base.vertices.len(),
         opt.solve.iterations,
@@ -138,117 +125,121 @@ fn run_with(
         honeycomb.closeness_max,
         honeycomb.closeness_avg,
     );
-    if std::env::var("VERBOSE").is_ok() {
-        for h in &opt.solve.history {
-            println!("  {h:?}");
-        }
-        for f in &opt.solve.families {
-            println!("  {f:?}");
-        }
-    }
     Run {
         opt,
         honeycomb,
         faces,
         initial_faces,
-        seconds,
     }
 }
 
+/// Every hexagon is split into two quads that share its diagonal; other cells stay whole.
+fn assert_every_hexagon_split(opt: &Optimized) {
+    let cover = opt.quad_cover.as_ref().unwrap();
+    let base = &opt.honeycomb.base;
+    let hexagons = base.faces.iter().filter(|f| f.len() == 6).count();
+    assert_eq!(cover.quads.len(), 2 * hexagons);
+    assert_eq!(cover.unsplit.len(), base.faces.len() - hexagons);
+    for (f, quads) in cover.cell_quads.iter().enumerate() {
+        let Some([a, b]) = *quads else {
+            assert_ne!(base.faces[f].len(), 6);
+            continue;
+        };
+        let [p, q] = cover.diagonals[f].unwrap();
+        for quad in [cover.quads[a], cover.quads[b]] {
+            assert!(quad.contains(&p) && quad.contains(&q), "cell {f}: {quad:?}");
+            assert!(quad.iter().all(|v| base.faces[f].contains(v)));
+        }
+    }
+}
+
+/// Figure 11 with the paper's weights (w_cons^faces 0.1, fairness 0.01, 5 iterations), closeness
+/// loosened to 0.1 as the quads need the vertices to leave S a little: a honeycomb whose quads
+/// are flatter than the ones it started with, within the paper's .007 / .003. The gain is small
+/// (about 4%): a honeycomb hugging S has about one degree of freedom per cell left and planar
+/// quads ask for two, so flatter quads need the vertices to leave S or the cells to change
+/// shape across the whole roof, and the paper's small weights do neither in 5 iterations.
 #[test]
-#[ignore]
-fn explore_plain() {
-    let (base, surface) = roof(3500);
-    let no_fair = QuadOptions {
-        w_fair_zigzag: 0.0,
-        w_fair_straight: 0.0,
+fn zigzag_quads_on_a_roof() {
+    let r = run(0.08, QuadOptions::default(), 0.1);
+    assert_every_hexagon_split(&r.opt);
+    assert!(
+        r.honeycomb.omega_max_deg < 0.1,
+        "{}",
+        r.honeycomb.omega_max_deg
+    );
+    assert!(r.honeycomb.delta_max < 1e-5, "{}", r.honeycomb.delta_max);
+    assert!(r.faces.delta_face_max < 0.01, "{:?}", r.faces);
+    assert!(r.faces.delta_face_avg < 0.003, "{:?}", r.faces);
+    assert!(
+        r.faces.delta_face_avg < 0.97 * r.initial_faces.delta_face_avg,
+        "{:?} {:?}",
+        r.faces,
+        r.initial_faces
+    );
+    assert!(
+        r.honeycomb.closeness_max < 0.05,
+        "{}",
+        r.honeycomb.closeness_max
+    );
+}
+
+/// Figure 17's herringbone on the more curved roof, planarity weighted 0.3: its quads lean
+/// opposite ways in neighbouring strips, and come out twice as flat as they started.
+#[test]
+fn alternating_quads_on_a_curved_roof() {
+    let quads = QuadOptions {
+        pattern: QuadPattern::Alternating,
+        w_cons_faces: 0.3,
         ..QuadOptions::default()
     };
-    let no_zig = QuadOptions {
-        w_fair_zigzag: 0.0,
-        ..QuadOptions::default()
-    };
-    let no_str = QuadOptions {
-        w_fair_straight: 0.0,
-        ..QuadOptions::default()
-    };
-    for quads in [
-        None,
-        Some(QuadOptions::default()),
-        Some(no_fair),
-        Some(no_zig),
-        Some(no_str),
-    ] {
+    let r = run(0.12, quads, 0.1);
+    assert_every_hexagon_split(&r.opt);
+    assert!(
+        r.honeycomb.omega_max_deg < 0.1,
+        "{}",
+        r.honeycomb.omega_max_deg
+    );
+    assert!(
+        r.faces.delta_face_avg < 0.6 * r.initial_faces.delta_face_avg,
+        "{:?} {:?}",
+        r.faces,
+        r.initial_faces
+    );
+    assert!(r.faces.delta_face_max < 0.01, "{:?}", r.faces);
+}
+
+/// A prescribed direction picks the straight class: the diagonals of a zigzag cover run along
+/// it, whichever of the three lattice directions is asked for.
+#[test]
+fn the_straight_direction_follows_the_request() {
+    let (base, surface) = roof(600, 0.08);
+    for degrees in [30.0f64, 90.0, 150.0, 0.0] {
+        let t = degrees.to_radians();
+        let direction = Vec3::new(t.cos(), t.sin(), 0.0);
         let options = OptimizeOptions {
             solver: SolverOptions {
-                max_iterations: 5,
+                max_iterations: 1,
                 ..SolverOptions::default()
             },
-            quads,
+            quads: Some(QuadOptions {
+                direction: Some(direction),
+                ..QuadOptions::default()
+            }),
             ..OptimizeOptions::default()
         };
-        let start = Instant::now();
-        let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).expect("optimize");
-        let s = &opt.solve;
-        println!(
-            "T={:.3} symbolic {:.3} assembly {:.3} factor {:.3} other {:.3} unknowns {} nnz {} factor_nnz {}",
-            start.elapsed().as_secs_f64(),
-            s.seconds_symbolic,
-            s.seconds_assembly,
-            s.seconds_factorization,
-            s.seconds_other,
-            s.unknowns,
-            s.matrix_nnz,
-            s.factor_nnz
-        );
-        for h in &s.history {
-            println!("  {h:?}");
+        let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).unwrap();
+        let cover = opt.quad_cover.unwrap();
+        // The lattice's edge directions are 30, 90 and 150 degrees (hex_disk, pointy side up):
+        // the diagonals are parallel to the class closest to the request (0 is 30 degrees from
+        // two of them).
+        let mut cosines = Vec::new();
+        for [p, q] in cover.diagonals.iter().flatten() {
+            let d = (base.vertices[*q] - base.vertices[*p]).normalized();
+            cosines.push(d.dot(direction).abs());
         }
-        if std::env::var("ONE").is_ok() {
-            break;
-        }
-    }
-}
-
-fn env(name: &str, default: f64) -> f64 {
-    std::env::var(name)
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
-}
-
-#[test]
-#[ignore]
-fn explore() {
-    let subject = match std::env::var("SUBJ").as_deref() {
-        Ok("dome") => Subject::Patch(Shape::Dome),
-        Ok("saddle") => Subject::Patch(Shape::Saddle),
-        _ => Subject::Roof,
-    };
-    let pattern = match std::env::var("PAT").as_deref() {
-        Ok("alt") => QuadPattern::Alternating,
-        _ => QuadPattern::Zigzag,
-    };
-    let its: Vec<usize> = std::env::var("IT")
-        .map(|v| v.split(',').filter_map(|t| t.parse().ok()).collect())
-        .unwrap_or(vec![5, 10]);
-    for it in its {
-        run_with(
-            subject,
-            3500,
-            it,
-            QuadOptions {
-                pattern,
-                w_cons_faces: env("QW", 0.1),
-                w_fair_zigzag: env("ZW", 0.01),
-                w_fair_straight: env("SW", 0.01),
-                direction: std::env::var("DIR").ok().map(|_| {
-                    let t = env("DIR", 0.0).to_radians();
-                    Vec3::new(t.cos(), t.sin(), 0.0)
-                }),
-                ..QuadOptions::default()
-            },
-            env("CW", 1.0),
-        );
+        let mean = cosines.iter().sum::<f64>() / cosines.len() as f64;
+        let expected = if degrees == 0.0 { 0.85 } else { 0.97 };
+        assert!(mean > expected, "{degrees}: mean |cos| {mean}");
     }
 }

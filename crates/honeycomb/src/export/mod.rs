@@ -1,5 +1,5 @@
 //! Writing a honeycomb structure directory: `base.obj`, `offset.obj`, `walls.obj`,
-//! `structure.json`, `report.json`. Every file is written to a temporary name and renamed, so a
+//! `structure.json`, `report.json` (and `quads.obj` for a quad-capped honeycomb). Every file is written to a temporary name and renamed, so a
 //! reader never sees a half-written file.
 
 use crate::error::{Error, Result};
@@ -21,6 +21,17 @@ pub fn write_structure(
     honeycomb: &Honeycomb,
     report: &impl serde::Serialize,
 ) -> Result<()> {
+    write_structure_with(dir, honeycomb, &[], report)
+}
+
+/// `write_structure` with more meshes (file name, mesh) written before `report.json`, which
+/// comes last so that a report always describes complete files.
+pub fn write_structure_with(
+    dir: &Path,
+    honeycomb: &Honeycomb,
+    extra: &[(&str, &PolyMesh)],
+    report: &impl serde::Serialize,
+) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|source| Error::Io {
         path: dir.to_path_buf(),
         source,
@@ -29,6 +40,9 @@ pub fn write_structure(
     write_mesh(&dir.join("offset.obj"), &honeycomb.offset)?;
     write_mesh(&dir.join("walls.obj"), &honeycomb.walls())?;
     write_json(&dir.join("structure.json"), &honeycomb.to_json())?;
+    for (name, mesh) in extra {
+        write_mesh(&dir.join(name), mesh)?;
+    }
     write_json(&dir.join("report.json"), report)
 }
 

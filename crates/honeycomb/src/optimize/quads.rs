@@ -57,8 +57,16 @@ impl QuadOptions {
             self.w_cons_faces,
             false,
         )?;
-        check_weight("zigzag fairness weight", self.w_fair_zigzag, true)?;
-        check_weight("straight fairness weight", self.w_fair_straight, true)
+        check_weight(
+            "zigzag fairness weight (w_fair_zig)",
+            self.w_fair_zigzag,
+            true,
+        )?;
+        check_weight(
+            "straight fairness weight (w_fair_str)",
+            self.w_fair_straight,
+            true,
+        )
     }
 }
 

@@ -1,0 +1,304 @@
+//! End to end: the paper's variants as options of `optimize`/`demo`, judged from the files they
+//! write, and their nonsense values rejected.
+
+mod common;
+
+use common::{assert_clean_failure, demo, number, read_json, run, stdout, TempDir};
+use honeycomb::geometry::Vec3;
+use honeycomb::mesh::{read_mesh, PolyMesh};
+use std::path::Path;
+
+fn read(path: &Path) -> PolyMesh {
+    read_mesh(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .mesh
+}
+
+/// The edges of a mesh, each once, as (lower, higher) vertex index.
+fn edges(mesh: &PolyMesh) -> Vec<[usize; 2]> {
+    let mut edges: Vec<[usize; 2]> = mesh
+        .faces
+        .iter()
+        .flat_map(|f| (0..f.len()).map(move |k| [f[k], f[(k + 1) % f.len()]]))
+        .map(|[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    edges
+}
+
+/// Distance between the diagonals of a quad over its mean edge length (DESIGN.md section 3).
+fn quad_delta(p: [Vec3; 4]) -> f64 {
+    let (d1, d2) = (p[2] - p[0], p[3] - p[1]);
+    let n = d1.cross(d2);
+    let distance = (p[1] - p[0]).dot(n).abs() / n.norm();
+    let mean_edge = (0..4).map(|k| (p[(k + 1) % 4] - p[k]).norm()).sum::<f64>() / 4.0;
+    distance / mean_edge
+}
+
+#[test]
+fn parallel_meshes_have_parallel_edges_and_the_asked_depth() {
+    let tmp = TempDir::new("parallel");
+    let dir = tmp.join("out");
+    demo(&dir, &["--vertices", "600", "--parallel", "--depth", "0.5"]);
+    let report = read_json(&dir, "report.json");
+    let (base, offset) = (read(&dir.join("base.obj")), read(&dir.join("offset.obj")));
+    assert_eq!(base.faces, offset.faces);
+    // Recomputed from the files: corresponding edges are parallel, depths are 0.5.
+    let mut beta_max = 0.0f64;
+    for [a, b] in edges(&base) {
+        let e = (base.vertices[b] - base.vertices[a]).normalized();
+        let f = (offset.vertices[b] - offset.vertices[a]).normalized();
+        beta_max = beta_max.max(e.cross(f).norm().asin().to_degrees());
+        assert!(e.dot(f) > 0.0, "edge {a}-{b} reversed in M'");
+    }
+    assert!(beta_max < 0.1, "beta {beta_max}");
+    assert!((number(&report, "beta_max_deg") - beta_max).abs() < 1e-6);
+    for (v, w) in base.vertices.iter().zip(&offset.vertices) {
+        assert!(
+            ((*w - *v).norm() - 0.5).abs() < 1e-3,
+            "{}",
+            (*w - *v).norm()
+        );
+    }
+    assert!(number(&report, "depth_min") > 0.499 && number(&report, "depth_max") < 0.501);
+    assert!(number(&report, "omega_max_deg") < 0.05);
+    assert!(number(&report, "delta_max") < 1e-5);
+}
+
+#[test]
+fn quads_are_written_planar_on_the_optimized_vertices() {
+    let tmp = TempDir::new("quads");
+    let dir = tmp.join("out");
+    demo(&dir, &["--vertices", "600", "--quads", "zigzag"]);
+    let report = read_json(&dir, "report.json");
+    let (base, quads) = (read(&dir.join("base.obj")), read(&dir.join("quads.obj")));
+    assert_eq!(base.vertices, quads.vertices);
+    let hexagons = base.faces.iter().filter(|f| f.len() == 6).count();
+    let split: Vec<&Vec<usize>> = quads.faces.iter().take(2 * hexagons).collect();
+    assert!(split.iter().all(|f| f.len() == 4));
+    assert_eq!(
+        quads.faces.len(),
+        2 * hexagons + base.faces.len() - hexagons
+    );
+    assert_eq!(number(&report, "quads") as usize, 2 * hexagons);
+    assert_eq!(report["quad_pattern"], "zigzag");
+    let deltas: Vec<f64> = split
+        .iter()
+        .map(|f| quad_delta([0, 1, 2, 3].map(|k| quads.vertices[f[k]])))
+        .collect();
+    let max = deltas.iter().copied().fold(0.0, f64::max);
+    let avg = deltas.iter().sum::<f64>() / deltas.len() as f64;
+    assert!((number(&report, "delta_face_max") - max).abs() < 1e-9);
+    assert!((number(&report, "delta_face_avg") - avg).abs() < 1e-9);
+    assert!(max < 0.02, "delta_face_max {max}");
+    assert!(number(&report, "omega_max_deg") < 0.1);
+}
+
+#[test]
+fn prescribed_axes_are_followed() {
+    let tmp = TempDir::new("axes");
+    let dir = tmp.join("first");
+    demo(&dir, &["--vertices", "300"]);
+    let base = read(&dir.join("base.obj"));
+    // Every axis tilted 10 degrees from the vertical, the same way.
+    let target = Vec3::new(10f64.to_radians().sin(), 0.0, 10f64.to_radians().cos());
+    let line = format!("{} {} {}\n", target.x, target.y, target.z);
+    let axes = tmp.write("axes.txt", &line.repeat(base.vertices.len()));
+    let out = tmp.join("out");
+    let output = run([
+        "optimize",
+        dir.join("base.obj").to_str().unwrap(),
+        "--surface",
+        dir.join("surface.obj").to_str().unwrap(),
+        "--axes",
+        axes.to_str().unwrap(),
+        "--w-axes",
+        "1",
+        "-q",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", common::stderr(&output));
+    let report = read_json(&out, "report.json");
+    let (m, m2) = (read(&out.join("base.obj")), read(&out.join("offset.obj")));
+    let mut worst = 0.0f64;
+    for (v, w) in m.vertices.iter().zip(&m2.vertices) {
+        let axis = (*w - *v).normalized();
+        // atan2, not acos: the angles are small.
+        let angle = axis.cross(target).norm().atan2(axis.dot(target).abs());
+        worst = worst.max(angle.to_degrees());
+    }
+    assert!(worst < 0.5, "axes off their target by {worst} degrees");
+    let reported = number(&report, "axes_angle_max_deg");
+    assert!((reported - worst).abs() < 1e-4, "{reported} vs {worst}");
+    assert_eq!(
+        number(&report, "axes_prescribed") as usize,
+        m.vertices.len()
+    );
+}
+
+#[test]
+fn shading_reports_the_light_before_and_after_per_direction() {
+    let tmp = TempDir::new("light");
+    let sun = tmp.write("sun.txt", "# morning, noon\n0.5 0 -0.8\n\n0 0.1 -1\n");
+    let dir = tmp.join("out");
+    demo(
+        &dir,
+        &[
+            "--vertices",
+            "600",
+            "--light",
+            "0.8,0,-0.57",
+            "--thickness",
+            "1",
+            "--sun-path",
+            sun.to_str().unwrap(),
+        ],
+    );
+    let report = read_json(&dir, "report.json");
+    let shading = &report["shading"];
+    let (before, after) = (
+        number(&shading["light"], "before"),
+        number(&shading["light"], "after"),
+    );
+    assert!(after < 0.8 * before, "light share {before} -> {after}");
+    assert_eq!(shading["sun_path"].as_array().unwrap().len(), 2);
+    assert!(number(&report, "omega_max_deg") < 0.5);
+    assert!(number(&report, "axes_angle_avg_deg") < 5.0);
+    // The minimum edge length that shading turns on by default holds in base.obj.
+    let base = read(&dir.join("base.obj"));
+    let shortest = edges(&base)
+        .iter()
+        .map(|&[a, b]| (base.vertices[b] - base.vertices[a]).norm())
+        .fold(f64::INFINITY, f64::min);
+    assert!((number(&report, "min_edge_length") - shortest).abs() < 1e-9);
+}
+
+#[test]
+fn minimum_edge_length_holds() {
+    let tmp = TempDir::new("min_edge");
+    let dir = tmp.join("out");
+    demo(&dir, &["--vertices", "300", "--min-edge", "0.9"]);
+    let base = read(&dir.join("base.obj"));
+    for [a, b] in edges(&base) {
+        let length = (base.vertices[b] - base.vertices[a]).norm();
+        assert!(length >= 0.9 * (1.0 - 1e-6), "edge {a}-{b}: {length}");
+    }
+}
+
+/// `demo --vertices 60 EXTRA... -o DIR/out` must fail cleanly naming every keyword, before
+/// writing anything.
+fn demo_fails(name: &str, extra: &[&str], keywords: &[&str]) {
+    let tmp = TempDir::new(name);
+    let out = tmp.join("out");
+    let mut args = vec!["demo", "--vertices", "60"];
+    args.extend_from_slice(extra);
+    args.extend(["-o", out.to_str().unwrap()]);
+    let output = run(&args);
+    assert_clean_failure(&output, keywords, Some(&out));
+    assert_eq!(stdout(&output), "");
+}
+
+#[test]
+fn nonsense_variant_values_are_rejected() {
+    demo_fails(
+        "zero_light",
+        &["--light", "0,0,0"],
+        &["--light", "non-zero"],
+    );
+    demo_fails(
+        "word_light",
+        &["--light", "up"],
+        &["--light", "three numbers"],
+    );
+    demo_fails("nan_light", &["--light", "1,nan,0"], &["--light", "finite"]);
+    demo_fails(
+        "negative_depth",
+        &["--parallel", "--depth", "-1"],
+        &["--depth -1", "positive"],
+    );
+    demo_fails("depth_alone", &["--depth", "1"], &["--depth", "--parallel"]);
+    demo_fails(
+        "parallel_weight",
+        &["--parallel", "--w-parallel", "-1"],
+        &["parallel", "-1"],
+    );
+    demo_fails(
+        "min_edge",
+        &["--min-edge", "0"],
+        &["--min-edge 0", "positive"],
+    );
+    demo_fails(
+        "quads",
+        &["--quads", "spiral"],
+        &["spiral", "zigzag or alternating"],
+    );
+    demo_fails(
+        "quad_direction",
+        &["--quads", "zigzag", "--quad-direction", "0,0,0"],
+        &["--quads", "direction", "non-zero"],
+    );
+    demo_fails(
+        "quad_weight",
+        &["--quads", "zigzag", "--w-cons-faces", "0"],
+        &["w_cons_faces", "0"],
+    );
+    demo_fails(
+        "sun_alone",
+        &["--sun-path", "sun.txt"],
+        &["--sun-path", "--light"],
+    );
+    demo_fails(
+        "axes_and_light",
+        &["--axes", "a.txt", "--light", "0,0,-1"],
+        &["--axes", "--light"],
+    );
+}
+
+#[test]
+fn bad_axes_and_sun_path_files_are_named() {
+    let tmp = TempDir::new("bad_files");
+    let dir = tmp.join("first");
+    demo(&dir, &["--vertices", "60"]);
+    let base = dir.join("base.obj");
+    let surface = dir.join("surface.obj");
+    let optimize_fails = |extra: &[&str], keywords: &[&str]| {
+        let out = tmp.join("out");
+        let mut args = vec![
+            "optimize",
+            base.to_str().unwrap(),
+            "--surface",
+            surface.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        args.extend(["-o", out.to_str().unwrap()]);
+        let output = run(&args);
+        assert_clean_failure(&output, keywords, Some(&out));
+    };
+    let too_few = tmp.write("few.txt", "0 0 1\n0 0 1\n");
+    optimize_fails(&["--axes", too_few.to_str().unwrap()], &["few.txt", "2"]);
+    let nv = read(&base).vertices.len();
+    let mut text = "0 0 1\n".repeat(nv - 1);
+    text.push_str("0 nan 1\n");
+    let nan = tmp.write("nan.txt", &text);
+    optimize_fails(
+        &["--axes", nan.to_str().unwrap()],
+        &["nan.txt", &format!(":{nv}:"), "nan"],
+    );
+    let missing = tmp.join("missing.txt");
+    optimize_fails(
+        &["--light", "0,0,-1", "--sun-path", missing.to_str().unwrap()],
+        &["missing.txt"],
+    );
+    let bad = tmp.write("sun.txt", "0 0 -1\n0 0\n");
+    optimize_fails(
+        &["--light", "0,0,-1", "--sun-path", bad.to_str().unwrap()],
+        &["sun.txt", ":2:"],
+    );
+    let zero = tmp.write("zero.txt", "0 0 0\n");
+    optimize_fails(
+        &["--light", "0,0,-1", "--sun-path", zero.to_str().unwrap()],
+        &["zero.txt", ":1:"],
+    );
+}
