@@ -31,9 +31,16 @@ pub struct Args {
     /// Print one JSON object per size instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Instead of the sizes: one row per variant of the paper's section 4 (parallel meshes,
+    /// quads, shading, prescribed axes, minimum edge length) on its test subject.
+    #[arg(long)]
+    pub variants: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
+    if args.variants {
+        return crate::bench_variants::run(args.json);
+    }
     if args.iterations == 0 || args.iterations > 1000 {
         return Err(Error::Parameter(format!(
             "--iterations {}: expected 1 to 1000",

@@ -2,9 +2,11 @@
 
 mod height_field;
 mod hex_patch;
+mod roof;
 
 pub use height_field::{HeightField, Shape};
 pub use hex_patch::{hex_disk, radius_for_vertices};
+pub use roof::roof;
 
 use crate::mesh::PolyMesh;
 

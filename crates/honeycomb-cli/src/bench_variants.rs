@@ -1,0 +1,214 @@
+//! `honeycomb bench --variants`: one row per variant of the paper's section 4 on the generated
+//! subject of its test, beside the time of the paper's Figure 16 row where it has one.
+
+use honeycomb::analysis::{extruded_along_normals, light_share, DEFAULT_LIGHT_SAMPLES};
+use honeycomb::generate::{lifted_hex_patch, roof, Shape};
+use honeycomb::mesh::PolyMesh;
+use honeycomb::optimize::{
+    optimize, shading_axes, AxesOptions, OptimizeOptions, Optimized, ParallelOptions,
+    QuadOptions, QuadPattern, Weights,
+};
+use honeycomb::report::Report;
+use honeycomb::solve::SolverOptions;
+use honeycomb::structure::measure;
+use honeycomb::surface::Surface;
+use honeycomb::{Result, Vec3};
+use std::time::Instant;
+
+/// One benchmark case: its subject, its options and what to say about its result.
+struct Case {
+    name: &'static str,
+    /// The paper's time for the same variant (Figure 16), in seconds.
+    paper_seconds: Option<f64>,
+    subject: (PolyMesh, PolyMesh),
+    options: OptimizeOptions,
+    /// Shading: the design light, whose share through the cells is measured.
+    light: Option<Vec3>,
+}
+
+fn solver(iterations: usize) -> SolverOptions {
+    SolverOptions {
+        max_iterations: iterations,
+        tolerance: 0.0,
+        ..SolverOptions::default()
+    }
+}
+
+fn cases() -> Result<Vec<Case>> {
+    let dome = |n| lifted_hex_patch(Shape::Dome, n);
+    let quads = |pattern, w_cons_faces, amplitude| Case {
+        name: match pattern {
+            QuadPattern::Zigzag => "zigzag quads",
+            QuadPattern::Alternating => "alternating quads",
+        },
+        paper_seconds: (pattern == QuadPattern::Zigzag).then_some(3.0),
+        subject: roof(3500, amplitude),
+        options: OptimizeOptions {
+            solver: solver(5),
+            weights: Weights {
+                closeness: 0.1,
+                ..Weights::default()
+            },
+            quads: Some(QuadOptions {
+                pattern,
+                w_cons_faces,
+                ..QuadOptions::default()
+            }),
+            ..OptimizeOptions::default()
+        },
+        light: None,
+    };
+    // Shading as in tests/variants.rs: a sun 35 degrees high, cells 1.2 edge lengths deep.
+    let shaded = dome(3300);
+    let light = Vec3::new(35f64.to_radians().cos(), 0.0, -35f64.to_radians().sin());
+    let edge = shaded.0.mean_edge_length();
+    let targets = shading_axes(&Surface::from_mesh(&shaded.1)?, &shaded.0.vertices, light)?;
+    let tilted = dome(1500);
+    let tilt = Vec3::new(10f64.to_radians().sin(), 0.0, 10f64.to_radians().cos());
+    let min_edge = dome(1500);
+    // As in tests/optimize.rs: 5% above the shortest edge the dome starts with.
+    let shortest = 1.05
+        * min_edge
+            .0
+            .faces
+            .iter()
+            .flat_map(|f| (0..f.len()).map(move |k| (f[k], f[(k + 1) % f.len()])))
+            .map(|(a, b)| (min_edge.0.vertices[a] - min_edge.0.vertices[b]).norm())
+            .fold(f64::INFINITY, f64::min);
+    Ok(vec![
+        Case {
+            name: "parallel",
+            paper_seconds: Some(4.0),
+            subject: dome(6144),
+            options: OptimizeOptions {
+                solver: solver(5),
+                parallel: Some(ParallelOptions::default()),
+                ..OptimizeOptions::default()
+            },
+            light: None,
+        },
+        quads(QuadPattern::Zigzag, QuadOptions::default().w_cons_faces, 0.08),
+        quads(QuadPattern::Alternating, 0.3, 0.12),
+        Case {
+            name: "shading",
+            paper_seconds: Some(2.0),
+            subject: shaded,
+            options: OptimizeOptions {
+                solver: solver(20),
+                thickness: Some(1.2 * edge),
+                min_edge: Some(0.3 * edge),
+                axes: Some(AxesOptions {
+                    targets,
+                    weight: AxesOptions::SHADING_WEIGHT,
+                }),
+                ..OptimizeOptions::default()
+            },
+            light: Some(light),
+        },
+        Case {
+            name: "prescribed axes",
+            paper_seconds: None,
+            subject: (tilted.0.clone(), tilted.1),
+            options: OptimizeOptions {
+                solver: solver(5),
+                axes: Some(AxesOptions {
+                    targets: vec![tilt; tilted.0.vertices.len()],
+                    weight: AxesOptions::DEFAULT_WEIGHT,
+                }),
+                ..OptimizeOptions::default()
+            },
+            light: None,
+        },
+        Case {
+            name: "minimum edge",
+            paper_seconds: None,
+            subject: min_edge,
+            options: OptimizeOptions {
+                solver: solver(15),
+                min_edge: Some(shortest),
+                ..OptimizeOptions::default()
+            },
+            light: None,
+        },
+    ])
+}
+
+/// The variant's own measure, from the realized geometry, as a short text.
+fn variant_measure(case: &Case, opt: &Optimized, report: &Report) -> String {
+    if let Some(p) = &report.parallel {
+        return format!("beta_max {:.1e} deg", p.beta_max_deg);
+    }
+    if let Some(q) = &report.quads {
+        return format!(
+            "delta_face {:.1e}/{:.1e}",
+            q.faces.delta_face_max, q.faces.delta_face_avg
+        );
+    }
+    if let (Some(light), Some(a)) = (case.light, &report.axes) {
+        // The light share through cells extruded along the normals, then through the result.
+        let (base, surface) = &case.subject;
+        let surface = Surface::from_mesh(surface).expect("the subject's surface");
+        let before = extruded_along_normals(
+            base,
+            &opt.connectivity,
+            &surface,
+            opt.honeycomb.thickness,
+        );
+        let share = |h| light_share(h, light, DEFAULT_LIGHT_SAMPLES).share;
+        return format!(
+            "light {:.2}->{:.2}, axes {:.1} deg avg",
+            share(&before),
+            share(&opt.honeycomb),
+            a.axes_angle_avg_deg,
+        );
+    }
+    if let Some(a) = &report.axes {
+        return format!("axes off {:.1e} deg max", a.axes_angle_max_deg);
+    }
+    match case.options.min_edge {
+        Some(l) => format!("min edge / L {:.7}", report.measures.min_edge_length / l),
+        None => String::new(),
+    }
+}
+
+pub fn run(json: bool) -> Result<()> {
+    if !json {
+        println!(
+            "{:<18} {:>6} {:>4} {:>10} {:>10}  {:<44} {:>7} {:>7}",
+            "variant", "|V|", "#It", "omega_max", "delta_max", "measure", "T (s)", "paper"
+        );
+    }
+    for case in cases()? {
+        let (base, surface) = &case.subject;
+        let start = Instant::now();
+        let opt = optimize(base, Some(surface), &case.options, &mut |_| {})?;
+        let seconds = start.elapsed().as_secs_f64();
+        let measures = measure(&opt.honeycomb, &Surface::from_mesh(surface)?);
+        let report = Report::new(&opt, &measures, &case.options.weights, seconds);
+        let text = variant_measure(&case, &opt, &report);
+        if json {
+            println!(
+                "{}",
+                serde_json::json!({
+                    "variant": case.name, "vertices": report.vertices,
+                    "iterations": report.iterations, "omega_max_deg": measures.omega_max_deg,
+                    "delta_max": measures.delta_max, "measure": text, "seconds": seconds,
+                    "paper_seconds": case.paper_seconds,
+                })
+            );
+        } else {
+            println!(
+                "{:<18} {:>6} {:>4} {:>10.2e} {:>10.2e}  {:<44} {:>7.3} {:>7}",
+                case.name,
+                report.vertices,
+                report.iterations,
+                measures.omega_max_deg,
+                measures.delta_max,
+                text,
+                seconds,
+                case.paper_seconds.map_or("-".into(), |s| format!("{s}"))
+            );
+        }
+    }
+    Ok(())
+}
