@@ -5,8 +5,8 @@ use honeycomb::analysis::{extruded_along_normals, light_share, DEFAULT_LIGHT_SAM
 use honeycomb::generate::{lifted_hex_patch, roof, Shape};
 use honeycomb::mesh::PolyMesh;
 use honeycomb::optimize::{
-    optimize, shading_axes, AxesOptions, OptimizeOptions, Optimized, ParallelOptions,
-    QuadOptions, QuadPattern, Weights,
+    optimize, shading_axes, AxesOptions, OptimizeOptions, Optimized, ParallelOptions, QuadOptions,
+    QuadPattern, Weights,
 };
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
@@ -59,10 +59,27 @@ fn cases() -> Result<Vec<Case>> {
         light: None,
     };
     // Shading as in tests/variants.rs: a sun 35 degrees high, cells 1.2 edge lengths deep.
-    let shaded = dome(3300);
     let light = Vec3::new(35f64.to_radians().cos(), 0.0, -35f64.to_radians().sin());
-    let edge = shaded.0.mean_edge_length();
-    let targets = shading_axes(&Surface::from_mesh(&shaded.1)?, &shaded.0.vertices, light)?;
+    let shading = |name, subject: (PolyMesh, PolyMesh)| -> Result<Case> {
+        let edge = subject.0.mean_edge_length();
+        let targets = shading_axes(&Surface::from_mesh(&subject.1)?, &subject.0.vertices, light)?;
+        Ok(Case {
+            name,
+            paper_seconds: Some(2.0),
+            subject,
+            options: OptimizeOptions {
+                solver: solver(20),
+                thickness: Some(1.2 * edge),
+                min_edge: Some(0.3 * edge),
+                axes: Some(AxesOptions {
+                    targets,
+                    weight: AxesOptions::SHADING_WEIGHT,
+                }),
+                ..OptimizeOptions::default()
+            },
+            light: Some(light),
+        })
+    };
     let tilted = dome(1500);
     let tilt = Vec3::new(10f64.to_radians().sin(), 0.0, 10f64.to_radians().cos());
     let min_edge = dome(1500);
@@ -87,24 +104,14 @@ fn cases() -> Result<Vec<Case>> {
             },
             light: None,
         },
-        quads(QuadPattern::Zigzag, QuadOptions::default().w_cons_faces, 0.08),
+        quads(
+            QuadPattern::Zigzag,
+            QuadOptions::default().w_cons_faces,
+            0.08,
+        ),
         quads(QuadPattern::Alternating, 0.3, 0.12),
-        Case {
-            name: "shading",
-            paper_seconds: Some(2.0),
-            subject: shaded,
-            options: OptimizeOptions {
-                solver: solver(20),
-                thickness: Some(1.2 * edge),
-                min_edge: Some(0.3 * edge),
-                axes: Some(AxesOptions {
-                    targets,
-                    weight: AxesOptions::SHADING_WEIGHT,
-                }),
-                ..OptimizeOptions::default()
-            },
-            light: Some(light),
-        },
+        shading("shading (dome)", dome(3300))?,
+        shading("shading (roof)", roof(3300, 0.08))?,
         Case {
             name: "prescribed axes",
             paper_seconds: None,
@@ -148,12 +155,8 @@ fn variant_measure(case: &Case, opt: &Optimized, report: &Report) -> String {
         // The light share through cells extruded along the normals, then through the result.
         let (base, surface) = &case.subject;
         let surface = Surface::from_mesh(surface).expect("the subject's surface");
-        let before = extruded_along_normals(
-            base,
-            &opt.connectivity,
-            &surface,
-            opt.honeycomb.thickness,
-        );
+        let before =
+            extruded_along_normals(base, &opt.connectivity, &surface, opt.honeycomb.thickness);
         let share = |h| light_share(h, light, DEFAULT_LIGHT_SAMPLES).share;
         return format!(
             "light {:.2}->{:.2}, axes {:.1} deg avg",

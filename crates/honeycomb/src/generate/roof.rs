@@ -65,4 +65,3 @@ pub fn roof(vertices: usize, amplitude: f64) -> (PolyMesh, PolyMesh) {
     }
     (PolyMesh::new(vs, faces), PolyMesh::new(sv, tris))
 }
-
