@@ -3,8 +3,13 @@
 
 use super::*;
 use crate::generate::{lifted_hex_patch, Shape};
+use crate::geometry::Vec3;
 use crate::mesh::Connectivity;
-use crate::optimize::{families, initial_normals, Frame, Weights};
+use crate::mesh::PolyMesh;
+use crate::optimize::{
+    families, initial_normals, AxesOptions, Frame, OptimizeOptions, ParallelOptions, Problem,
+    QuadOptions, QuadPattern, Weights,
+};
 use crate::solve::{jacobian_fd_error, Constraint};
 use crate::surface::Surface;
 
@@ -16,13 +21,37 @@ fn jitter(i: usize) -> f64 {
     ((h >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
 }
 
-#[test]
-fn every_family_matches_finite_differences() {
+/// A small saddle patch in the normalized frame, as `optimize` sees it.
+fn saddle() -> (Frame, PolyMesh, Surface, Connectivity) {
     let (base, surface) = lifted_hex_patch(Shape::Saddle, 200);
     let frame = Frame::of(&base);
     let mesh = frame.to_normalized(&base);
     let surface = Surface::from_mesh(&frame.to_normalized(&surface)).unwrap();
     let conn = Connectivity::build(&mesh).unwrap();
+    (frame, mesh, surface, conn)
+}
+
+/// Every `expected` family is present, and every family's Jacobian at `x` matches central
+/// differences.
+fn assert_families_match(families: &mut [Box<dyn Constraint + '_>], x: &[f64], expected: &[&str]) {
+    let names: Vec<&str> = families.iter().map(|c| c.name()).collect();
+    for e in expected {
+        assert!(names.contains(e), "family {e} missing: {names:?}");
+    }
+    for c in families {
+        c.refresh(x);
+        let err = jacobian_fd_error(c.as_ref(), x, 1e-6);
+        assert!(
+            err < 1e-7,
+            "{}: Jacobian deviates from finite differences by {err}",
+            c.name()
+        );
+    }
+}
+
+#[test]
+fn every_family_matches_finite_differences() {
+    let (_, mesh, surface, conn) = saddle();
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
     let normals = initial_normals(&mesh, &conn, &surface);
     let mut x = layout.pack(&mesh.vertices, &normals);
@@ -37,8 +66,7 @@ fn every_family_matches_finite_differences() {
     };
     let mut fams = families(&mesh, &conn, &surface, &weights);
     fams.push(Box::new(min_edge));
-    let names: Vec<String> = fams.iter().map(|c| c.name().to_string()).collect();
-    for expected in [
+    let expected = [
         "normalization",
         "wall_consistency",
         "node_120_valence3",
@@ -47,33 +75,15 @@ fn every_family_matches_finite_differences() {
         "fairness_opposite_walls",
         "guide_axes_along_normals",
         "min_edge_length",
-    ] {
-        assert!(
-            names.iter().any(|n| n == expected),
-            "family {expected} missing: {names:?}"
-        );
-    }
-    for c in &mut fams {
-        c.refresh(&x);
-        let err = jacobian_fd_error(c.as_ref(), &x, 1e-6);
-        assert!(
-            err < 1e-7,
-            "{}: Jacobian deviates from finite differences by {err}",
-            c.name()
-        );
-    }
+    ];
+    assert_families_match(&mut fams, &x, &expected);
 }
 
 /// The variants' families, built the way `optimize` builds them: parallel meshes with a
 /// constant depth, prescribed axes, the minimum edge length and the boundary orientation guard.
 #[test]
 fn variant_families_match_finite_differences() {
-    use crate::optimize::{AxesOptions, OptimizeOptions, ParallelOptions, Problem};
-    let (base, surface) = lifted_hex_patch(Shape::Saddle, 200);
-    let frame = Frame::of(&base);
-    let mesh = frame.to_normalized(&base);
-    let surface = Surface::from_mesh(&frame.to_normalized(&surface)).unwrap();
-    let conn = Connectivity::build(&mesh).unwrap();
+    let (frame, mesh, surface, conn) = saddle();
     let options = OptimizeOptions {
         min_edge: Some(0.5 * frame.unit),
         parallel: Some(ParallelOptions {
@@ -82,7 +92,7 @@ fn variant_families_match_finite_differences() {
         }),
         axes: Some(AxesOptions {
             targets: (0..mesh.vertices.len())
-                .map(|v| crate::Vec3::new(jitter(3 * v), jitter(3 * v + 1), 2.0))
+                .map(|v| Vec3::new(jitter(3 * v), jitter(3 * v + 1), 2.0))
                 .collect(),
             weight: 0.1,
         }),
@@ -92,33 +102,53 @@ fn variant_families_match_finite_differences() {
     for (i, xi) in problem.x.iter_mut().enumerate() {
         *xi += 0.05 * jitter(i + 11);
     }
-    let names: Vec<String> = problem
-        .families
-        .iter()
-        .map(|c| c.name().to_string())
-        .collect();
-    for expected in [
+    let expected = [
         "offset_on_axis",
         "edge_parallelity",
         "constant_depth",
         "prescribed_axes",
         "node_orientation_valence2",
         "min_edge_length",
-    ] {
-        assert!(
-            names.iter().any(|n| n == expected),
-            "family {expected} missing: {names:?}"
-        );
-    }
-    let x = problem.x.clone();
-    for c in &mut problem.families {
-        c.refresh(&x);
-        let err = jacobian_fd_error(c.as_ref(), &x, 1e-6);
-        assert!(
-            err < 1e-7,
-            "{}: Jacobian deviates from finite differences by {err}",
-            c.name()
-        );
+    ];
+    assert_families_match(&mut problem.families, &problem.x, &expected);
+}
+
+/// The quad cover's families (both patterns): normals, planarity, polyline fairness.
+#[test]
+fn quad_families_match_finite_differences() {
+    for pattern in [QuadPattern::Zigzag, QuadPattern::Alternating] {
+        let (frame, mesh, surface, conn) = saddle();
+        let options = OptimizeOptions {
+            quads: Some(QuadOptions {
+                pattern,
+                ..QuadOptions::default()
+            }),
+            ..OptimizeOptions::default()
+        };
+        let mut problem =
+            Problem::build(&mesh, &conn, &surface, &options, &options.weights, &frame);
+        let cover = problem.quads.as_ref().unwrap();
+        assert_eq!(cover.quads.len(), 2 * mesh.faces.len());
+        // Every quad normal starts as a unit vector on S's side.
+        let start = problem.x.len() - 3 * cover.quads.len();
+        for (q, corners) in cover.quads.iter().enumerate() {
+            let n = Vec3::from_slice(&problem.x[start + 3 * q..]);
+            let c = corners
+                .iter()
+                .fold(Vec3::ZERO, |s, &v| s + mesh.vertices[v])
+                / 4.0;
+            assert!((n.norm() - 1.0).abs() < 1e-12 && n.dot(surface.normal_at(c)) > 0.9);
+        }
+        for (i, xi) in problem.x.iter_mut().enumerate() {
+            *xi += 0.05 * jitter(i);
+        }
+        let expected = [
+            "quad_normalization",
+            "quad_planarity",
+            "fairness_zigzag",
+            "fairness_straight",
+        ];
+        assert_families_match(&mut problem.families, &problem.x, &expected);
     }
 }
 

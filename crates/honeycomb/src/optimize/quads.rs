@@ -157,66 +157,6 @@ fn best_fit_normal(corners: [Vec3; 4], surface: &Surface) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::{lifted_hex_patch, Shape};
-    use crate::optimize::{Frame, OptimizeOptions, Problem, Weights};
-    use crate::solve::jacobian_fd_error;
-
-    /// A deterministic pseudo-random perturbation in [-1, 1].
-    fn jitter(i: usize) -> f64 {
-        let h = (i as u64)
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((h >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-    }
-
-    #[test]
-    fn quad_families_match_finite_differences() {
-        for pattern in [QuadPattern::Zigzag, QuadPattern::Alternating] {
-            let (base, surface) = lifted_hex_patch(Shape::Saddle, 200);
-            let frame = Frame::of(&base);
-            let mesh = frame.to_normalized(&base);
-            let surface = Surface::from_mesh(&frame.to_normalized(&surface)).unwrap();
-            let conn = Connectivity::build(&mesh).unwrap();
-            let options = OptimizeOptions {
-                quads: Some(QuadOptions {
-                    pattern,
-                    ..QuadOptions::default()
-                }),
-                ..OptimizeOptions::default()
-            };
-            let weights = Weights::default();
-            let mut problem = Problem::build(&mesh, &conn, &surface, &options, &weights, &frame);
-            let cover = problem.quads.as_ref().unwrap();
-            assert_eq!(cover.quads.len(), 2 * mesh.faces.len());
-            // Every quad normal starts as a unit vector on S's side.
-            let start = problem.x.len() - 3 * cover.quads.len();
-            for (q, corners) in cover.quads.iter().enumerate() {
-                let n = Vec3::from_slice(&problem.x[start + 3 * q..]);
-                let c = corners
-                    .iter()
-                    .fold(Vec3::ZERO, |s, &v| s + mesh.vertices[v])
-                    / 4.0;
-                assert!((n.norm() - 1.0).abs() < 1e-12 && n.dot(surface.normal_at(c)) > 0.9);
-            }
-            for (i, xi) in problem.x.iter_mut().enumerate() {
-                *xi += 0.05 * jitter(i);
-            }
-            let names: Vec<String> = problem.families.iter().map(|c| c.name().into()).collect();
-            for expected in [
-                "quad_normalization",
-                "quad_planarity",
-                "fairness_zigzag",
-                "fairness_straight",
-            ] {
-                assert!(names.iter().any(|n| n == expected), "{expected}: {names:?}");
-            }
-            for c in &mut problem.families {
-                c.refresh(&problem.x);
-                let err = jacobian_fd_error(c.as_ref(), &problem.x, 1e-6);
-                assert!(err < 1e-7, "{pattern:?} {}: {err}", c.name());
-            }
-        }
-    }
 
     #[test]
     fn bad_options_are_named() {
