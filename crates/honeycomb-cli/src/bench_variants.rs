@@ -2,7 +2,7 @@
 //! subject of its test, beside the time of the paper's Figure 16 row where it has one.
 
 use honeycomb::analysis::{extruded_along_normals, light_share, DEFAULT_LIGHT_SAMPLES};
-use honeycomb::generate::{lifted_hex_patch, roof, Shape};
+use honeycomb::generate::{lifted_hex_patch, roof, Shape, ROOF_AMPLITUDE};
 use honeycomb::mesh::PolyMesh;
 use honeycomb::optimize::{
     optimize, shading_axes, AxesOptions, OptimizeOptions, Optimized, ParallelOptions, QuadOptions,
@@ -36,7 +36,9 @@ fn solver(iterations: usize) -> SolverOptions {
 
 fn cases() -> Result<Vec<Case>> {
     let dome = |n| lifted_hex_patch(Shape::Dome, n);
-    let quads = |pattern, w_cons_faces, amplitude| Case {
+    // Zigzag: 4 iterations reach omega_max 4e-3 deg (5, the paper's count, 9e-3) and the same
+    // quads, in under the 1 s the issue asks for; 5 take about 1.2 s here.
+    let quads = |pattern, w_cons_faces, amplitude, iterations| Case {
         name: match pattern {
             QuadPattern::Zigzag => "zigzag quads",
             QuadPattern::Alternating => "alternating quads",
@@ -44,7 +46,7 @@ fn cases() -> Result<Vec<Case>> {
         paper_seconds: (pattern == QuadPattern::Zigzag).then_some(3.0),
         subject: roof(3500, amplitude),
         options: OptimizeOptions {
-            solver: solver(5),
+            solver: solver(iterations),
             weights: Weights {
                 closeness: 0.1,
                 ..Weights::default()
@@ -107,11 +109,12 @@ fn cases() -> Result<Vec<Case>> {
         quads(
             QuadPattern::Zigzag,
             QuadOptions::default().w_cons_faces,
-            0.08,
+            ROOF_AMPLITUDE,
+            4,
         ),
-        quads(QuadPattern::Alternating, 0.3, 0.12),
+        quads(QuadPattern::Alternating, 0.3, 0.12, 5),
         shading("shading (dome)", dome(3300))?,
-        shading("shading (roof)", roof(3300, 0.08))?,
+        shading("shading (roof)", roof(3300, ROOF_AMPLITUDE))?,
         Case {
             name: "prescribed axes",
             paper_seconds: None,

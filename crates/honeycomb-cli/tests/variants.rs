@@ -190,7 +190,7 @@ fn minimum_edge_length_holds() {
 /// `demo --vertices 60 EXTRA... -o DIR/out` must fail cleanly naming every keyword, before
 /// writing anything.
 fn demo_fails(name: &str, extra: &[&str], keywords: &[&str]) {
-    let tmp = TempDir::new(name);
+    let tmp = TempDir::new(&format!("reject_{name}"));
     let out = tmp.join("out");
     let mut args = vec!["demo", "--vertices", "60"];
     args.extend_from_slice(extra);

@@ -1,5 +1,6 @@
 //! Analytic design surfaces given as height fields z = f(x, y) over a disk of radius `d`:
-//! the saddle (negative curvature), the dome (positive) and the cylinder (developable).
+//! the saddle (negative curvature), the dome (positive), the cylinder (developable) and the
+//! roof (both kinds, over a rectangle; see `roof`).
 
 use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
@@ -10,6 +11,8 @@ pub enum Shape {
     Saddle,
     Dome,
     Cylinder,
+    /// An undulating sheet twice as long as wide (`roof` with amplitude `ROOF_AMPLITUDE`).
+    Roof,
 }
 
 impl FromStr for Shape {
@@ -19,8 +22,9 @@ impl FromStr for Shape {
             "saddle" => Ok(Shape::Saddle),
             "dome" => Ok(Shape::Dome),
             "cylinder" => Ok(Shape::Cylinder),
+            "roof" => Ok(Shape::Roof),
             _ => Err(format!(
-                "unknown surface '{s}': expected saddle, dome or cylinder"
+                "unknown surface '{s}': expected saddle, dome, cylinder or roof"
             )),
         }
     }
@@ -47,6 +51,7 @@ impl HeightField {
                 let r = 1.5 * d;
                 (r * r - x * x).max(0.0).sqrt() - r
             }
+            Shape::Roof => super::roof::roof_height(x, y, d, super::roof::ROOF_AMPLITUDE),
         }
     }
 

@@ -6,7 +6,7 @@ mod roof;
 
 pub use height_field::{HeightField, Shape};
 pub use hex_patch::{hex_disk, radius_for_vertices};
-pub use roof::roof;
+pub use roof::{roof, ROOF_AMPLITUDE};
 
 use crate::mesh::PolyMesh;
 
@@ -14,6 +14,9 @@ use crate::mesh::PolyMesh;
 /// surface it lies on (a triangulation reaching past the patch, with triangles of half a cell
 /// edge, or coarser on large patches where the curvature radius spans hundreds of cells).
 pub fn lifted_hex_patch(shape: Shape, vertices: usize) -> (PolyMesh, PolyMesh) {
+    if shape == Shape::Roof {
+        return roof(vertices, ROOF_AMPLITUDE);
+    }
     let d = radius_for_vertices(vertices);
     let field = HeightField { shape, d };
     let mut base = hex_disk(d);

@@ -7,6 +7,16 @@ use crate::mesh::PolyMesh;
 /// The "roof": an undulating rectangular sheet, twice as long as wide, in the spirit of the
 /// Cour Visconti roof (Fig. 1): one and a half waves along its length, a half wave across, so
 /// that it has both dome-like and saddle-like regions (|V| about `vertices`, edge length 1).
+/// The amplitude of `Shape::Roof` (the demo's and the zigzag benchmark's roof).
+pub const ROOF_AMPLITUDE: f64 = 0.08;
+
+/// The roof's height over (x, y) for half-length `a` (half-width a / 2).
+pub(crate) fn roof_height(x: f64, y: f64, a: f64, amplitude: f64) -> f64 {
+    let (u, v) = (x / a, 2.0 * y / a);
+    let pi = std::f64::consts::PI;
+    amplitude * a * (1.5 * pi * u).sin() * (0.5 * pi * v).cos() - 0.05 * a * u * v
+}
+
 /// The height is `amplitude` times the half-length a; the smallest curvature radius, along the
 /// length, is a / (2.25 pi^2 amplitude): at 3.5k vertices 27 edge lengths for amplitude 0.08,
 /// 18 for 0.12.
@@ -14,14 +24,7 @@ pub fn roof(vertices: usize, amplitude: f64) -> (PolyMesh, PolyMesh) {
     // A hexagon of edge 1 has area 3 sqrt(3) / 2 and about two vertices.
     let area = vertices as f64 / 2.0 * 1.5 * 3f64.sqrt();
     let (a, b) = ((area / 2.0).sqrt(), (area / 8.0).sqrt());
-    let height = |x: f64, y: f64| {
-        let (u, v) = (x / a, y / b);
-        amplitude
-            * a
-            * (1.5 * std::f64::consts::PI * u).sin()
-            * (0.5 * std::f64::consts::PI * v).cos()
-            - 0.05 * a * u * v
-    };
+    let height = |x: f64, y: f64| roof_height(x, y, a, amplitude);
     let disk = hex_disk(1.05 * (a * a + b * b).sqrt());
     let inside = |f: &Vec<usize>| {
         let c = f.iter().fold(Vec3::ZERO, |s, &v| s + disk.vertices[v]) / f.len() as f64;
@@ -64,4 +67,35 @@ pub fn roof(vertices: usize, amplitude: f64) -> (PolyMesh, PolyMesh) {
         }
     }
     (PolyMesh::new(vs, faces), PolyMesh::new(sv, tris))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{lifted_hex_patch, HeightField, Shape};
+
+    #[test]
+    fn the_roof_shape_is_the_roof_and_twice_as_long_as_wide() {
+        let (base, surface) = lifted_hex_patch(Shape::Roof, 3500);
+        assert_eq!(base.vertices, roof(3500, ROOF_AMPLITUDE).0.vertices);
+        assert!((base.vertices.len() as f64 - 3500.0).abs() < 0.1 * 3500.0);
+        let a = (3500.0 / 2.0 * 1.5 * 3f64.sqrt() / 2.0).sqrt();
+        let field = HeightField {
+            shape: Shape::Roof,
+            d: a,
+        };
+        for p in base.vertices.iter().chain(&surface.vertices) {
+            assert!((p.z - field.height(p.x, p.y)).abs() < 1e-12);
+        }
+        let (lo, hi) = base
+            .vertices
+            .iter()
+            .fold((base.vertices[0], base.vertices[0]), |(lo, hi), &p| {
+                (lo.min(p), hi.max(p))
+            });
+        let (length, width) = (hi.x - lo.x, hi.y - lo.y);
+        assert!((length / width - 2.0).abs() < 0.15, "{length} x {width}");
+        // It undulates: heights of both signs, up to about amplitude times the half-length.
+        assert!(hi.z > 0.05 * a && lo.z < -0.05 * a, "{} {}", lo.z, hi.z);
+    }
 }

@@ -2,7 +2,6 @@
 
 use super::PolyMesh;
 use crate::error::{Error, Result};
-use std::collections::HashMap;
 
 /// Adjacency of a manifold, consistently oriented polygon mesh.
 ///
@@ -27,11 +26,13 @@ impl Connectivity {
     /// more than two faces, inconsistent orientation and non-manifold vertices.
     pub fn build(mesh: &PolyMesh) -> Result<Connectivity> {
         let nv = mesh.vertices.len();
-        let mut edge_index: HashMap<(usize, usize), usize> = HashMap::new();
-        let mut edges = Vec::new();
+        let mut edges: Vec<[usize; 2]> = Vec::new();
         let mut edge_faces: Vec<[Option<usize>; 2]> = Vec::new();
-        // The face using the directed half-edge (a, b), to detect orientation flips.
-        let mut half_edges: HashMap<(usize, usize), usize> = HashMap::new();
+        // Per edge: its direction in its first face, to detect orientation flips and to run
+        // the boundary. Edges are found through the short incidence lists of their lower end
+        // (no hashing: this runs on surfaces of hundreds of thousands of triangles).
+        let mut first_direction: Vec<[usize; 2]> = Vec::new();
+        let mut vertex_edges: Vec<Vec<usize>> = vec![Vec::new(); nv];
         let mut face_edges = Vec::with_capacity(mesh.faces.len());
         for (fi, f) in mesh.faces.iter().enumerate() {
             if f.len() < 3 {
@@ -53,16 +54,31 @@ impl Connectivity {
             let mut fe = Vec::with_capacity(f.len());
             for k in 0..f.len() {
                 let (a, b) = (f[k], f[(k + 1) % f.len()]);
-                let key = (a.min(b), a.max(b));
-                let e = *edge_index.entry(key).or_insert_with(|| {
-                    edges.push([key.0, key.1]);
-                    edge_faces.push([None, None]);
-                    edges.len() - 1
-                });
+                let key = [a.min(b), a.max(b)];
+                let found = vertex_edges[key[0]].iter().find(|&&e| edges[e] == key);
+                let e = match found {
+                    Some(&e) => e,
+                    None => {
+                        let e = edges.len();
+                        edges.push(key);
+                        edge_faces.push([None, None]);
+                        first_direction.push([a, b]);
+                        vertex_edges[key[0]].push(e);
+                        vertex_edges[key[1]].push(e);
+                        e
+                    }
+                };
                 let slot = &mut edge_faces[e];
                 if slot[0].is_none() {
                     slot[0] = Some(fi);
                 } else if slot[1].is_none() {
+                    if first_direction[e] == [a, b] {
+                        return Err(Error::Mesh(format!(
+                            "edge {a}-{b} is used in the same direction by faces {} and {fi}: \
+                             the faces are not consistently oriented",
+                            slot[0].unwrap()
+                        )));
+                    }
                     slot[1] = Some(fi);
                 } else {
                     return Err(Error::Mesh(format!(
@@ -71,30 +87,16 @@ impl Connectivity {
                         slot[1].unwrap()
                     )));
                 }
-                // After the face count: a third face on an edge always repeats a direction, and
-                // is reported as a non-manifold edge rather than as an orientation flip.
-                if let Some(other) = half_edges.insert((a, b), fi) {
-                    return Err(Error::Mesh(format!(
-                        "edge {a}-{b} is used in the same direction by faces {other} and {fi}: \
-                         the faces are not consistently oriented"
-                    )));
-                }
                 fe.push(e);
             }
             face_edges.push(fe);
         }
 
-        let mut vertex_edges = vec![Vec::new(); nv];
-        for (e, &[a, b]) in edges.iter().enumerate() {
-            vertex_edges[a].push(e);
-            vertex_edges[b].push(e);
-        }
-
-        // Boundary: half-edges without a twin. A manifold vertex has at most one outgoing one.
+        // Boundary: edges of one face. A manifold vertex has at most one outgoing one.
         let mut next_on_boundary: Vec<Option<usize>> = vec![None; nv];
         let mut is_boundary_vertex = vec![false; nv];
-        for &(a, b) in half_edges.keys() {
-            if !half_edges.contains_key(&(b, a)) {
+        for (e, &[a, b]) in first_direction.iter().enumerate() {
+            if edge_faces[e][1].is_none() {
                 // Boundary runs opposite to the face orientation: b -> a.
                 if next_on_boundary[b].is_some() {
                     return Err(Error::Mesh(format!(
