@@ -5,6 +5,7 @@ mod bench;
 mod bench_variants;
 mod demo;
 mod edit;
+mod init;
 mod optimize;
 mod progress;
 mod render;
@@ -25,6 +26,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Make a hexagonal base mesh on a design surface.
+    Init(init::Args),
+    /// Init then optimize: from a design surface to a structure directory in one command.
+    Pipeline(init::PipelineArgs),
     /// Optimize a hexagonal base mesh into a honeycomb and write a structure directory.
     Optimize(optimize::Args),
     /// Build a hex mesh on a built-in surface, optimize it and write a structure directory.
@@ -42,6 +47,8 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Init(args) => init::run(args),
+        Command::Pipeline(args) => init::run_pipeline(args),
         Command::Optimize(args) => optimize::run(args),
         Command::Demo(args) => demo::run(args),
         Command::Bench(args) => bench::run(args),

@@ -55,3 +55,26 @@ impl IterationBar {
         }
     }
 }
+
+/// A spinner for work of unknown length (drawn on stderr, hidden when not a terminal).
+pub struct Spinner {
+    bar: Option<ProgressBar>,
+}
+
+impl Spinner {
+    pub fn new(output: Output, message: &'static str) -> Spinner {
+        let bar = (output == Output::Human).then(|| {
+            let bar = ProgressBar::new_spinner();
+            bar.set_message(message);
+            bar.enable_steady_tick(std::time::Duration::from_millis(100));
+            bar
+        });
+        Spinner { bar }
+    }
+
+    pub fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}

@@ -10,6 +10,7 @@ pub mod error;
 pub mod export;
 pub mod generate;
 pub mod geometry;
+pub mod init;
 pub mod mesh;
 pub mod optimize;
 pub mod render;

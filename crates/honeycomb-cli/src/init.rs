@@ -1,0 +1,197 @@
+//! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
+
+use crate::optimize::{load, optimize_and_write, SolveArgs};
+use crate::progress::{Output, Spinner};
+use honeycomb::export::write_json;
+use honeycomb::init::{
+    init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, Initialized, Method,
+};
+use honeycomb::mesh::{write_mesh, PolyMesh};
+use honeycomb::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// How the hex mesh is made (shared by `init` and `pipeline`).
+#[derive(clap::Args, Clone)]
+#[command(group(clap::ArgGroup::new("size").required(true).args(["cells", "edge_length"])))]
+pub struct InitArgs {
+    /// About this many cells over the surface's area.
+    #[arg(long, allow_negative_numbers = true)]
+    pub cells: Option<usize>,
+    /// Cell edge length in model units.
+    #[arg(long, allow_negative_numbers = true)]
+    pub edge_length: Option<f64>,
+    /// `flatten`: conformal flattening and a regular hex grid (disk-like surfaces, holes
+    /// allowed). `field` (field-aligned remeshing) is not built yet.
+    #[arg(long, default_value = "flatten")]
+    pub method: Method,
+    /// `boundary`: hex edges follow the surface's boundary; `none`; or an OBJ file of
+    /// polylines (`l` records) the hex edges should follow.
+    #[arg(long, default_value = "boundary")]
+    pub align: String,
+    /// `trim`: drop cells the boundary cuts; `keep`: close them against the boundary.
+    #[arg(long, default_value = "trim")]
+    pub boundary: BoundaryMode,
+    /// With flatten: `arap` keeps lengths (cells of one size), `lscm` keeps angles only.
+    #[arg(long, default_value = "arap")]
+    pub flatten: Flattener,
+    /// Shifts the grid by a pseudo-random offset; the same seed gives the same mesh.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+}
+
+impl InitArgs {
+    fn options(&self) -> Result<InitOptions> {
+        let size = match (self.cells, self.edge_length) {
+            (Some(n), _) => CellSize::Cells(n),
+            (None, Some(l)) => CellSize::EdgeLength(l),
+            (None, None) => unreachable!("clap requires one of --cells and --edge-length"),
+        };
+        let align = match self.align.as_str() {
+            "boundary" => Align::Boundary,
+            "none" => Align::None,
+            path => Align::Strokes(read_strokes(Path::new(path)).map_err(|e| match e {
+                Error::Io { path, source } => Error::Parameter(format!(
+                    "--align {}: expected boundary, none or a polyline file ({source})",
+                    path.display()
+                )),
+                e => e,
+            })?),
+        };
+        let options = InitOptions {
+            size,
+            method: self.method,
+            align,
+            boundary: self.boundary,
+            flattener: self.flatten,
+            seed: self.seed,
+        };
+        options.validate()?;
+        Ok(options)
+    }
+
+    /// Reads nothing but `surface`; runs init with a spinner.
+    fn run(&self, surface: &PolyMesh, output: Output) -> Result<Initialized> {
+        let options = self.options()?;
+        let spinner = Spinner::new(output, "making the hex mesh");
+        let result = init(surface, &options);
+        spinner.finish();
+        result
+    }
+}
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Design surface S: a triangle, quad or polygon mesh (OBJ, OFF, PLY).
+    pub surface: PathBuf,
+    #[command(flatten)]
+    pub init: InitArgs,
+    /// The hex base mesh to write (OBJ, OFF or PLY by extension).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Also write the report (cells by sides, edge-length spread, distortion) as JSON here.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// Print the report as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let output = Output::from_flags(args.quiet, args.json);
+    args.init.options()?;
+    let surface = load(&args.surface, output)?;
+    let made = args
+        .init
+        .run(&surface, output)
+        .map_err(|e| name_file(&args.surface, e))?;
+    write_mesh(&args.output, &made.base)?;
+    if let Some(path) = &args.report {
+        write_json(path, &made.report)?;
+    }
+    print_report(&made, output, &args.output)
+}
+
+fn print_report(made: &Initialized, output: Output, written: &Path) -> Result<()> {
+    let r = &made.report;
+    match output {
+        Output::Json => println!(
+            "{}",
+            serde_json::to_string_pretty(r).map_err(|e| Error::Parameter(e.to_string()))?
+        ),
+        Output::Human => {
+            println!(
+                "{} cells ({} interior, {:.1}% hexagons), {} vertices; edge length {:.4} (cv \
+                 {:.3}); flattening: angle distortion {:.3} avg, length scale cv {:.3}; {:.2} s",
+                r.cells,
+                r.interior_cells,
+                100.0 * r.interior_hexagon_share,
+                r.vertices,
+                r.edge_length_mean,
+                r.edge_length_cv,
+                r.flattening.conformal_avg,
+                r.flattening.length_scale_cv,
+                r.seconds
+            );
+            println!("wrote {}", written.display());
+        }
+        Output::Quiet => {}
+    }
+    Ok(())
+}
+
+/// Names the surface file in a mesh error.
+fn name_file(path: &Path, e: Error) -> Error {
+    match e {
+        Error::Mesh(m) => Error::Mesh(format!("{}: {m}", path.display())),
+        e => e,
+    }
+}
+
+#[derive(clap::Args)]
+pub struct PipelineArgs {
+    /// Design surface S: a triangle, quad or polygon mesh (OBJ, OFF, PLY).
+    pub surface: PathBuf,
+    #[command(flatten)]
+    pub init: InitArgs,
+    #[command(flatten)]
+    pub opts: SolveArgs,
+    /// Output directory: the structure files, plus initial.obj, init.json and surface.obj.
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
+    if args.opts.surface.is_some() {
+        return Err(Error::Parameter(
+            "pipeline takes the surface as its argument; --surface is for `optimize`".into(),
+        ));
+    }
+    args.init.options()?;
+    args.opts.options()?;
+    let output = args.opts.output();
+    let surface = load(&args.surface, output)?;
+    let made = args
+        .init
+        .run(&surface, output)
+        .map_err(|e| name_file(&args.surface, e))?;
+    if output == Output::Human {
+        print_report(&made, output, &args.output.join("initial.obj"))?;
+    }
+    if args.output.exists() && !args.output.is_dir() {
+        return Err(Error::Parameter(format!(
+            "-o {}: exists and is not a directory",
+            args.output.display()
+        )));
+    }
+    std::fs::create_dir_all(&args.output).map_err(|source| Error::Io {
+        path: args.output.clone(),
+        source,
+    })?;
+    // Before the solve, so that they are there to inspect whatever it gives.
+    write_mesh(&args.output.join("initial.obj"), &made.base)?;
+    write_mesh(&args.output.join("surface.obj"), &surface)?;
+    write_json(&args.output.join("init.json"), &made.report)?;
+    optimize_and_write(&made.base, Some(&surface), &args.opts, &args.output).map(|_| ())
+}

@@ -1,0 +1,181 @@
+//! End to end: `honeycomb init` and `honeycomb pipeline` on surface files.
+
+mod common;
+
+use common::{assert_clean_failure, demo, number, read_json, run, stderr, TempDir};
+use honeycomb::mesh::{read_mesh, validate_base_mesh};
+use std::path::{Path, PathBuf};
+
+/// The design surface of a small built-in demo (`shape`), written by `demo`.
+fn surface_file(tmp: &TempDir, shape: &str) -> PathBuf {
+    let dir = tmp.join(&format!("demo-{shape}"));
+    demo(&dir, &["--vertices", "600", "--shape", shape]);
+    dir.join("surface.obj")
+}
+
+#[test]
+fn init_writes_a_valid_base_mesh_and_its_report() {
+    let tmp = TempDir::new("init");
+    let surface = surface_file(&tmp, "cylinder");
+    let base = tmp.join("base.obj");
+    let report = tmp.join("init.json");
+    let out = run([
+        "init",
+        surface.to_str().unwrap(),
+        "--cells",
+        "250",
+        "-o",
+        base.to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let mesh = read_mesh(&base).unwrap().mesh;
+    validate_base_mesh(&mesh).unwrap();
+    let r = read_json(report.parent().unwrap(), "init.json");
+    assert_eq!(number(&r, "vertices") as usize, mesh.vertices.len());
+    assert_eq!(number(&r, "cells") as usize, mesh.faces.len());
+    assert!(number(&r, "interior_hexagon_share") >= 0.95);
+    assert!(number(&r, "edge_length_cv") <= 0.12);
+    assert!(number(&r, "distance_to_surface_max") < 1e-9);
+    assert!(r["cells_by_sides"]["6"].as_u64().unwrap() > 150);
+    assert!(r["flattening"]["conformal_avg"].as_f64().unwrap() < 1.1);
+    // The base mesh is ready for optimize.
+    let dir = tmp.join("structure");
+    let out = run([
+        "optimize",
+        base.to_str().unwrap(),
+        "--surface",
+        surface.to_str().unwrap(),
+        "-q",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(number(&read_json(&dir, "report.json"), "omega_max_deg") < 0.01);
+}
+
+#[test]
+fn pipeline_goes_from_a_surface_to_a_honeycomb() {
+    let tmp = TempDir::new("pipeline");
+    let surface = surface_file(&tmp, "roof");
+    let dir = tmp.join("out");
+    let out = run([
+        "pipeline",
+        surface.to_str().unwrap(),
+        "--cells",
+        "300",
+        "--json",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    for file in [
+        "initial.obj",
+        "init.json",
+        "surface.obj",
+        "base.obj",
+        "offset.obj",
+        "walls.obj",
+        "report.json",
+    ] {
+        assert!(dir.join(file).is_file(), "{file} missing");
+    }
+    let report = read_json(&dir, "report.json");
+    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
+    let initial = read_mesh(&dir.join("initial.obj")).unwrap().mesh;
+    let base = read_mesh(&dir.join("base.obj")).unwrap().mesh;
+    assert_eq!(initial.faces, base.faces);
+}
+
+/// `init SURFACE EXTRA... -o DIR/base.obj` must fail cleanly, naming every keyword.
+fn init_fails(tmp: &TempDir, surface: &Path, extra: &[&str], keywords: &[&str]) {
+    let out_dir = tmp.join("out");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    let base = out_dir.join("base.obj");
+    let mut args = vec!["init", surface.to_str().unwrap()];
+    args.extend_from_slice(extra);
+    args.extend(["-o", base.to_str().unwrap()]);
+    assert_clean_failure(&run(&args), keywords, Some(&out_dir));
+}
+
+#[test]
+fn bad_surfaces_and_options_are_named() {
+    let tmp = TempDir::new("init_bad");
+    let surface = surface_file(&tmp, "dome");
+    let cells = ["--cells", "100"];
+    init_fails(&tmp, &surface, &[], &["required"]);
+    init_fails(
+        &tmp,
+        &surface,
+        &["--cells", "10", "--edge-length", "1"],
+        &["--cells", "--edge-length"],
+    );
+    init_fails(&tmp, &surface, &["--cells", "0"], &["--cells 0"]);
+    init_fails(
+        &tmp,
+        &surface,
+        &["--edge-length", "-2"],
+        &["--edge-length -2", "positive"],
+    );
+    init_fails(
+        &tmp,
+        &surface,
+        &["--edge-length", "1e6"],
+        &["no cell", "smaller cells", "surface.obj"],
+    );
+    init_fails(
+        &tmp,
+        &surface,
+        &["--cells", "100", "--method", "field"],
+        &["not built yet"],
+    );
+    init_fails(
+        &tmp,
+        &surface,
+        &["--cells", "100", "--method", "magic"],
+        &["magic", "flatten or field"],
+    );
+    init_fails(
+        &tmp,
+        &surface,
+        &["--cells", "100", "--boundary", "cut"],
+        &["cut", "trim or keep"],
+    );
+    let missing = tmp.join("strokes.obj");
+    init_fails(
+        &tmp,
+        &surface,
+        &["--cells", "100", "--align", missing.to_str().unwrap()],
+        &["--align", "strokes.obj"],
+    );
+    let no_lines = tmp.write("points.obj", "v 0 0 0\nv 1 0 0\n");
+    init_fails(
+        &tmp,
+        &surface,
+        &["--cells", "100", "--align", no_lines.to_str().unwrap()],
+        &["points.obj", "no polyline"],
+    );
+    // Surfaces: closed, empty, missing.
+    let cube = tmp.write(
+        "cube.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n\
+         f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n",
+    );
+    init_fails(&tmp, &cube, &cells, &["cube.obj", "closed"]);
+    let empty = tmp.write("empty.obj", "");
+    init_fails(&tmp, &empty, &cells, &["empty.obj"]);
+    init_fails(&tmp, &tmp.join("nothing.obj"), &cells, &["nothing.obj"]);
+    // An output format nobody reads.
+    let out = run([
+        "init",
+        surface.to_str().unwrap(),
+        "--cells",
+        "100",
+        "-o",
+        tmp.join("base.xyz").to_str().unwrap(),
+    ]);
+    assert_clean_failure(&out, &["base.xyz"], None);
+    assert!(!tmp.join("base.xyz").exists());
+}

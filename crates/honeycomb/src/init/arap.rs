@@ -1,0 +1,137 @@
+//! As-rigid-as-possible refinement of a flattening (Liu et al. 2008, local/global): each
+//! triangle's best rotation onto its current image (local), then the positions that best fit
+//! all the rotated triangles (global, one cotangent-Laplacian solve whose factorization is done
+//! once). Where a conformal map lets cell sizes swell (annuli, strongly curved pieces), this
+//! trades a little angle distortion for nearly kept lengths: what a hex grid of equal cells
+//! needs.
+
+use super::flatten::Point2;
+use crate::geometry::Vec3;
+use faer::linalg::solvers::SolveCore;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+
+/// Each triangle in its own plane: corner coordinates in an orthonormal frame of the triangle.
+fn local_triangle(vertices: &[Vec3], t: &[usize; 3]) -> [Point2; 3] {
+    let [a, b, c] = t.map(|v| vertices[v]);
+    let e1 = b - a;
+    let x = e1.normalized();
+    let n = e1.cross(c - a);
+    let y = n.cross(e1).normalized();
+    [
+        [0.0, 0.0],
+        [e1.norm(), 0.0],
+        [(c - a).dot(x), (c - a).dot(y)],
+    ]
+}
+
+fn cot_at(p: [Point2; 3], k: usize) -> f64 {
+    // Cotangent of the angle at corner k.
+    let (o, a, b) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+    let (u, v) = ([a[0] - o[0], a[1] - o[1]], [b[0] - o[0], b[1] - o[1]]);
+    let cross = (u[0] * v[1] - u[1] * v[0]).abs();
+    if cross < 1e-300 {
+        0.0
+    } else {
+        (u[0] * v[0] + u[1] * v[1]) / cross
+    }
+}
+
+/// Refines `points` in place by `iterations` local/global steps; vertex 0 stays where it is.
+/// Returns false (and leaves `points` alone) when the Laplacian cannot be factorized.
+pub fn refine(
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    points: &mut [Point2],
+    iterations: usize,
+) -> bool {
+    let n = points.len();
+    if n < 3 {
+        return false;
+    }
+    let locals: Vec<[Point2; 3]> = triangles
+        .iter()
+        .map(|t| local_triangle(vertices, t))
+        .collect();
+    // Half-cotangent weight of edge (k+1, k+2) of each triangle: the angle at k faces it.
+    let weights: Vec<[f64; 3]> = locals
+        .iter()
+        .map(|p| [0, 1, 2].map(|k| 0.5 * cot_at(*p, k).clamp(0.0, 100.0)))
+        .collect();
+    // Laplacian over vertices 1..n (vertex 0 pinned), lower triangle.
+    let index = |v: usize| v.checked_sub(1);
+    let mut triplets = Vec::new();
+    for (t, w) in triangles.iter().zip(&weights) {
+        for k in 0..3 {
+            let (i, j, c) = (t[(k + 1) % 3], t[(k + 2) % 3], w[k]);
+            for a in [i, j].into_iter().filter_map(index) {
+                triplets.push(Triplet::new(a, a, c));
+            }
+            if let (Some(a), Some(b)) = (index(i), index(j)) {
+                triplets.push(Triplet::new(a.max(b), a.min(b), -c));
+            }
+        }
+    }
+    let Ok(matrix) = SparseColMat::<usize, f64>::try_new_from_triplets(n - 1, n - 1, &triplets)
+    else {
+        return false;
+    };
+    let Ok(llt) = matrix.sp_cholesky(Side::Lower) else {
+        return false;
+    };
+    let pinned = points[0];
+    let mut rhs = Mat::<f64>::zeros(n - 1, 2);
+    for _ in 0..iterations {
+        rhs.fill(0.0);
+        for ((t, local), w) in triangles.iter().zip(&locals).zip(&weights) {
+            let rotation = best_rotation(t.map(|v| points[v]), *local, *w);
+            for k in 0..3 {
+                let (i, j, c) = (t[(k + 1) % 3], t[(k + 2) % 3], w[k]);
+                let (li, lj) = (local[(k + 1) % 3], local[(k + 2) % 3]);
+                let d = rotate(rotation, [li[0] - lj[0], li[1] - lj[1]]);
+                // Both ends of the edge pull towards the rotated edge.
+                for (v, sign) in [(i, 1.0), (j, -1.0)] {
+                    if let Some(a) = index(v) {
+                        rhs[(a, 0)] += sign * c * d[0];
+                        rhs[(a, 1)] += sign * c * d[1];
+                    }
+                }
+                // A pinned neighbour moves its term to the right-hand side.
+                for (v, other) in [(i, j), (j, i)] {
+                    if let (Some(a), None) = (index(v), index(other)) {
+                        rhs[(a, 0)] += c * pinned[0];
+                        rhs[(a, 1)] += c * pinned[1];
+                    }
+                }
+            }
+        }
+        llt.solve_in_place_with_conj(faer::Conj::No, rhs.as_mut());
+        for v in 1..n {
+            points[v] = [rhs[(v - 1, 0)], rhs[(v - 1, 1)]];
+        }
+    }
+    true
+}
+
+/// The rotation (cos, sin) that best turns the local triangle onto its image (weighted
+/// Procrustes in the plane: the angle of the summed cross and dot products).
+fn best_rotation(image: [Point2; 3], local: [Point2; 3], w: [f64; 3]) -> [f64; 2] {
+    let (mut dot, mut cross) = (0.0, 0.0);
+    for (k, wk) in w.iter().enumerate() {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let u = [image[i][0] - image[j][0], image[i][1] - image[j][1]];
+        let x = [local[i][0] - local[j][0], local[i][1] - local[j][1]];
+        dot += wk * (u[0] * x[0] + u[1] * x[1]);
+        cross += wk * (x[0] * u[1] - x[1] * u[0]);
+    }
+    let r = (dot * dot + cross * cross).sqrt();
+    if r > 0.0 {
+        [dot / r, cross / r]
+    } else {
+        [1.0, 0.0]
+    }
+}
+
+fn rotate(r: [f64; 2], v: Point2) -> Point2 {
+    [r[0] * v[0] - r[1] * v[1], r[1] * v[0] + r[0] * v[1]]
+}

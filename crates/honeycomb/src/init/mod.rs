@@ -1,0 +1,629 @@
+//! A hexagonal base mesh M on a design surface S (the paper's section 3, "Initialization of the
+//! base mesh"; Figure 6).
+//!
+//! Method `flatten`, for disk-like, gently curved surfaces (holes allowed): S is flattened by
+//! least-squares conformal maps, a regular hexagonal lattice is laid over the flat domain,
+//! cells outside it are dropped (or, with `BoundaryMode::Keep`, closed against its boundary),
+//! and the corners are mapped back onto S through the triangles that contain them, so every
+//! vertex lies on S exactly. Cell sizes on S inherit the flattening's scale variation, which
+//! the report gives (the paper's Figure 6b). The field-aligned method is not built yet.
+
+mod arap;
+mod flatten;
+mod lattice;
+mod locate;
+mod strokes;
+
+pub use flatten::{flatten, Distortion, Flattener, Flattening, Point2};
+pub use lattice::{Corner, Lattice};
+pub use strokes::{read_strokes, sixfold_mean};
+
+use crate::error::{Error, Result};
+use crate::geometry::Vec3;
+use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
+use crate::surface::Surface;
+use locate::Locator;
+use serde::Serialize;
+use std::collections::{BTreeMap, HashMap};
+use std::str::FromStr;
+use std::time::Instant;
+
+/// How large the cells are.
+#[derive(Clone, Copy, Debug)]
+pub enum CellSize {
+    /// About this many cells over S's area.
+    Cells(usize),
+    /// This edge length (model units).
+    EdgeLength(f64),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    Flatten,
+    Field,
+}
+
+impl FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Method, String> {
+        match s {
+            "flatten" => Ok(Method::Flatten),
+            "field" => Ok(Method::Field),
+            _ => Err(format!("unknown method '{s}': expected flatten or field")),
+        }
+    }
+}
+
+/// Which way the lattice turns.
+#[derive(Clone, Debug)]
+pub enum Align {
+    /// As the flattening leaves it.
+    None,
+    /// Its edges follow S's boundary as well as they can (6-fold mean direction).
+    Boundary,
+    /// Its edges follow these polylines on S (the paper's user strokes).
+    Strokes(Vec<Vec<Vec3>>),
+}
+
+/// What happens to cells that S's boundary cuts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BoundaryMode {
+    /// Dropped: every cell lies wholly on S.
+    Trim,
+    /// Kept when their center is on S, their outside corners moved onto S's boundary.
+    Keep,
+}
+
+impl FromStr for BoundaryMode {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<BoundaryMode, String> {
+        match s {
+            "trim" => Ok(BoundaryMode::Trim),
+            "keep" => Ok(BoundaryMode::Keep),
+            _ => Err(format!(
+                "unknown boundary mode '{s}': expected trim or keep"
+            )),
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct InitOptions {
+    pub size: CellSize,
+    pub method: Method,
+    pub align: Align,
+    pub boundary: BoundaryMode,
+    pub flattener: Flattener,
+    /// Shifts the lattice by a pseudo-random offset within one cell (0: no shift); the same
+    /// seed gives the same mesh.
+    pub seed: u64,
+}
+
+/// A cell edge longer on S than this many lattice edges marks a fold of the flattening.
+const MAX_EDGE_STRETCH: f64 = 3.0;
+
+/// Cells more than this are refused as a typo rather than attempted.
+pub const MAX_CELLS: usize = 2_000_000;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct InitReport {
+    pub method: Method,
+    /// The flattening used (LSCM when ARAP was asked for but turned triangles over).
+    pub flattener: Flattener,
+    pub boundary: BoundaryMode,
+    pub vertices: usize,
+    pub edges: usize,
+    pub cells: usize,
+    /// Cells by number of sides.
+    pub cells_by_sides: BTreeMap<usize, usize>,
+    /// Cells with no edge on the boundary, and the share of hexagons among them.
+    pub interior_cells: usize,
+    pub interior_hexagon_share: f64,
+    /// The lattice's edge length in the plane (model units).
+    pub edge_length_target: f64,
+    pub edge_length_mean: f64,
+    /// Standard deviation over mean of the edge lengths on S.
+    pub edge_length_cv: f64,
+    /// Largest distance of a vertex to S over the mean edge length.
+    pub distance_to_surface_max: f64,
+    pub valence_histogram: BTreeMap<usize, usize>,
+    /// The lattice's rotation in the flattened plane (degrees).
+    pub lattice_angle_deg: f64,
+    /// How far the flattening is from an isometry.
+    pub flattening: Distortion,
+    /// Triangles of S that the flattening turned over (0 for a good flattening).
+    pub flipped_triangles: usize,
+    pub seconds: f64,
+}
+
+pub struct Initialized {
+    pub base: PolyMesh,
+    pub report: InitReport,
+}
+
+impl InitOptions {
+    pub fn validate(&self) -> Result<()> {
+        match self.size {
+            CellSize::Cells(n) if n == 0 || n > MAX_CELLS => Err(Error::Parameter(format!(
+                "--cells {n}: expected 1 to {MAX_CELLS}"
+            ))),
+            CellSize::EdgeLength(l) if !l.is_finite() || l <= 0.0 => Err(Error::Parameter(
+                format!("--edge-length {l}: expected a positive length in model units"),
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
+/// A hexagonal base mesh on `surface` (a triangle, quad or polygon mesh).
+pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
+    let start = Instant::now();
+    options.validate()?;
+    if options.method == Method::Field {
+        return Err(Error::Parameter(
+            "--method field (field-aligned remeshing) is not built yet; --method flatten \
+             covers disk-like surfaces, holes included"
+                .into(),
+        ));
+    }
+    let conn = validate_surface_mesh(surface)?;
+    let components = face_components(surface, &conn);
+    if components > 1 {
+        return Err(Error::Mesh(format!(
+            "the surface has {components} separate pieces; init needs one (split the file)"
+        )));
+    }
+    let (vertices, triangles) = surface.star_triangulated();
+    let flat = flatten(&vertices, &triangles, options.flattener)?;
+    let flipped = triangles
+        .iter()
+        .filter(|t| flatten::signed_area(&flat.points, t) <= 0.0)
+        .count();
+    let area: f64 = triangles
+        .iter()
+        .map(|t| {
+            0.5 * (vertices[t[1]] - vertices[t[0]])
+                .cross(vertices[t[2]] - vertices[t[0]])
+                .norm()
+        })
+        .sum();
+    let hexagon = |l: f64| 1.5 * 3f64.sqrt() * l * l;
+    let edge = match options.size {
+        CellSize::Cells(n) => (area / (n as f64 * 1.5 * 3f64.sqrt())).sqrt(),
+        CellSize::EdgeLength(l) => l,
+    };
+    let fits = area / hexagon(edge);
+    if fits > MAX_CELLS as f64 {
+        return Err(Error::Parameter(format!(
+            "--edge-length {edge}: about {fits:.0} cells on a surface of area {area:.4}; \
+             expected at most {MAX_CELLS}"
+        )));
+    }
+    let angle = lattice_angle(options, &vertices, &triangles, &flat.points)?;
+    let lattice = Lattice {
+        edge,
+        angle,
+        offset: seeded_offset(options.seed, edge),
+    };
+    let locator = Locator::new(&flat.points, &triangles);
+    let boundary = flatten::boundary_half_edges(&triangles);
+    let placed = place_cells(
+        &lattice,
+        &flat.points,
+        &locator,
+        &boundary,
+        options.boundary,
+    );
+    if placed.is_empty() {
+        return Err(Error::Mesh(format!(
+            "no cell of edge length {edge:.4} fits on the surface (area {area:.4}, about \
+             {fits:.1} cells): choose smaller cells"
+        )));
+    }
+    // Each corner's position on S: through its triangle, or along its boundary edge.
+    let to_surface = |p: &Placed| match p {
+        Placed::Inside(l) => triangles[l.triangle]
+            .iter()
+            .zip(l.weights)
+            .fold(Vec3::ZERO, |s, (&v, w)| s + vertices[v] * w),
+        Placed::OnBoundary { segment, t, .. } => {
+            let [a, b] = boundary[*segment];
+            vertices[a] * (1.0 - t) + vertices[b] * *t
+        }
+    };
+    // A cell whose corners land far apart on S straddles a place where the flattening
+    // overlaps itself (an annulus can wrap over its own hole): dropped.
+    let folded = |cell: (i64, i64)| {
+        let corners = Lattice::cell_corners(cell).map(|c| to_surface(&placed.corners[&c]));
+        (0..6).any(|k| (corners[k] - corners[(k + 1) % 6]).norm() > MAX_EDGE_STRETCH * edge)
+    };
+    let unfolded: Vec<(i64, i64)> = placed
+        .cells
+        .iter()
+        .copied()
+        .filter(|&c| !folded(c))
+        .collect();
+    let cells = largest_component(&unfolded);
+    let mut index: HashMap<Corner, usize> = HashMap::new();
+    let mut mesh_vertices = Vec::new();
+    let mut faces = Vec::new();
+    for &cell in &cells {
+        let face = Lattice::cell_corners(cell)
+            .iter()
+            .map(|c| {
+                *index.entry(*c).or_insert_with(|| {
+                    mesh_vertices.push(to_surface(&placed.corners[c]));
+                    mesh_vertices.len() - 1
+                })
+            })
+            .collect();
+        faces.push(face);
+    }
+    let base = PolyMesh::new(mesh_vertices, faces);
+    let base_conn = validate_base_mesh(&base).map_err(|e| match (e, options.boundary) {
+        (Error::Mesh(m), BoundaryMode::Keep) => Error::Mesh(format!(
+            "closing the cells against the boundary gave an invalid base mesh ({m}); \
+             --boundary trim always gives a valid one"
+        )),
+        (e, _) => e,
+    })?;
+    let report = report(
+        &base,
+        &base_conn,
+        surface,
+        options,
+        edge,
+        angle,
+        flat.flattener,
+        flat.distortion,
+        flipped,
+        start,
+    )?;
+    Ok(Initialized { base, report })
+}
+
+/// Connected pieces of the mesh (faces joined through shared edges).
+fn face_components(mesh: &PolyMesh, conn: &Connectivity) -> usize {
+    let mut seen = vec![false; mesh.faces.len()];
+    let mut components = 0;
+    for root in 0..mesh.faces.len() {
+        if seen[root] {
+            continue;
+        }
+        components += 1;
+        seen[root] = true;
+        let mut stack = vec![root];
+        while let Some(f) = stack.pop() {
+            for &e in &conn.face_edges[f] {
+                for g in conn.edge_faces[e].into_iter().flatten() {
+                    if !seen[g] {
+                        seen[g] = true;
+                        stack.push(g);
+                    }
+                }
+            }
+        }
+    }
+    components
+}
+
+/// The rotation that makes the lattice's edges follow the boundary or the strokes.
+fn lattice_angle(
+    options: &InitOptions,
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    points: &[Point2],
+) -> Result<f64> {
+    // Lattice edges run at 30, 90 and 150 degrees before rotation: turn 30 degrees less.
+    let edge_direction = std::f64::consts::FRAC_PI_6;
+    let mean = match &options.align {
+        Align::None => return Ok(0.0),
+        Align::Boundary => sixfold_mean(
+            flatten::boundary_half_edges(triangles)
+                .into_iter()
+                .map(|[a, b]| (points[a], points[b])),
+        ),
+        Align::Strokes(lines) => {
+            // Each stroke point goes where its nearest vertex of S went.
+            let nearest = |p: Vec3| {
+                (0..vertices.len())
+                    .min_by(|&a, &b| {
+                        (vertices[a] - p)
+                            .norm_squared()
+                            .total_cmp(&(vertices[b] - p).norm_squared())
+                    })
+                    .map(|v| points[v])
+                    .unwrap_or([0.0, 0.0])
+            };
+            let planar: Vec<Vec<Point2>> = lines
+                .iter()
+                .map(|l| l.iter().map(|&p| nearest(p)).collect())
+                .collect();
+            let segments = planar
+                .iter()
+                .flat_map(|l| l.windows(2).map(|w| (w[0], w[1])));
+            let mean = sixfold_mean(segments);
+            if mean.is_none() {
+                return Err(Error::Parameter(
+                    "--align: the strokes give no direction on the surface (too short, or \
+                     spread evenly over all directions)"
+                        .into(),
+                ));
+            }
+            mean
+        }
+    };
+    Ok(mean.map_or(0.0, |m| m - edge_direction))
+}
+
+/// A pseudo-random shift of the lattice within one cell (splitmix64 of the seed).
+fn seeded_offset(seed: u64, edge: f64) -> Point2 {
+    if seed == 0 {
+        return [0.0, 0.0];
+    }
+    let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut next = || {
+        z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut x = z;
+        x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((x ^ (x >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    [next() * 3f64.sqrt() * edge, next() * 1.5 * edge]
+}
+
+/// Where a lattice corner landed.
+#[derive(Clone, Copy, Debug)]
+enum Placed {
+    Inside(locate::Located),
+    /// Moved onto boundary segment `segment` at parameter `t` (`Keep` only).
+    OnBoundary {
+        segment: usize,
+        t: f64,
+        point: Point2,
+    },
+}
+
+impl Placed {
+    fn point(&self, points: &[Point2], triangles: &[[usize; 3]]) -> Point2 {
+        match self {
+            Placed::Inside(l) => {
+                let t = triangles[l.triangle];
+                let mut p = [0.0, 0.0];
+                for (&v, w) in t.iter().zip(l.weights) {
+                    p[0] += w * points[v][0];
+                    p[1] += w * points[v][1];
+                }
+                p
+            }
+            Placed::OnBoundary { point, .. } => *point,
+        }
+    }
+}
+
+struct PlacedCells {
+    cells: Vec<(i64, i64)>,
+    corners: HashMap<Corner, Placed>,
+}
+
+impl PlacedCells {
+    fn is_empty(&self) -> bool {
+        self.cells.is_empty()
+    }
+}
+
+fn place_cells(
+    lattice: &Lattice,
+    points: &[Point2],
+    locator: &Locator,
+    boundary: &[[usize; 2]],
+    mode: BoundaryMode,
+) -> PlacedCells {
+    let triangles = locator.triangles();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    let mut corners: HashMap<Corner, Option<Placed>> = HashMap::new();
+    let mut locate_corner = |c: Corner| {
+        *corners
+            .entry(c)
+            .or_insert_with(|| locator.locate(lattice.corner(c)).map(Placed::Inside))
+    };
+    let mut cells = Vec::new();
+    let mut placed: HashMap<Corner, Placed> = HashMap::new();
+    for cell in lattice.cells_covering(lo, hi) {
+        let keys = Lattice::cell_corners(cell);
+        let found = keys.map(&mut locate_corner);
+        let all_inside = found.iter().all(Option::is_some);
+        // A concave stretch of boundary can cross an edge whose ends are both inside.
+        let edges_inside = all_inside
+            && (0..6).all(|k| {
+                let (p, q) = (lattice.corner(keys[k]), lattice.corner(keys[(k + 1) % 6]));
+                locator
+                    .locate([0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])])
+                    .is_some()
+            });
+        if edges_inside {
+            for (k, f) in keys.iter().zip(found) {
+                placed.insert(*k, f.expect("inside"));
+            }
+            cells.push(cell);
+            continue;
+        }
+        if mode == BoundaryMode::Trim || locator.locate(lattice.center(cell)).is_none() {
+            continue;
+        }
+        // Keep: outside corners onto the nearest boundary point; the closed cell must stay a
+        // fair convex hexagon, else it is dropped.
+        let closed: Vec<Placed> = keys
+            .iter()
+            .zip(found)
+            .map(|(k, f)| f.unwrap_or_else(|| snap(lattice.corner(*k), points, boundary)))
+            .collect();
+        let polygon: Vec<Point2> = closed.iter().map(|p| p.point(points, triangles)).collect();
+        if fair_hexagon(&polygon, lattice.edge) {
+            for (k, p) in keys.iter().zip(closed) {
+                placed.entry(*k).or_insert(p);
+            }
+            cells.push(cell);
+        }
+    }
+    PlacedCells {
+        cells,
+        corners: placed,
+    }
+}
+
+/// The nearest point of the boundary to `p`.
+fn snap(p: Point2, points: &[Point2], boundary: &[[usize; 2]]) -> Placed {
+    let mut best = (f64::INFINITY, 0, 0.0, p);
+    for (s, &[a, b]) in boundary.iter().enumerate() {
+        let (pa, pb) = (points[a], points[b]);
+        let d = [pb[0] - pa[0], pb[1] - pa[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let t = if len2 > 0.0 {
+            (((p[0] - pa[0]) * d[0] + (p[1] - pa[1]) * d[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = [pa[0] + t * d[0], pa[1] + t * d[1]];
+        let dist = (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+        if dist < best.0 {
+            best = (dist, s, t, q);
+        }
+    }
+    Placed::OnBoundary {
+        segment: best.1,
+        t: best.2,
+        point: best.3,
+    }
+}
+
+/// Convex, counter-clockwise, no edge shorter than a quarter of the lattice's, and at least
+/// a third of a full cell's area.
+fn fair_hexagon(polygon: &[Point2], edge: f64) -> bool {
+    let n = polygon.len();
+    let mut area = 0.0;
+    for k in 0..n {
+        let (a, b, c) = (polygon[k], polygon[(k + 1) % n], polygon[(k + 2) % n]);
+        let length = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+        let turn = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
+        if length < 0.25 * edge || turn <= 0.0 {
+            return false;
+        }
+        area += a[0] * b[1] - b[0] * a[1];
+    }
+    0.5 * area >= 0.5 * 3f64.sqrt() * edge * edge
+}
+
+/// The cells of the largest piece joined through shared edges (stray cells dropped).
+fn largest_component(cells: &[(i64, i64)]) -> Vec<(i64, i64)> {
+    let at: HashMap<(i64, i64), usize> = cells.iter().enumerate().map(|(k, &c)| (c, k)).collect();
+    let mut label = vec![usize::MAX; cells.len()];
+    let mut sizes = Vec::new();
+    for root in 0..cells.len() {
+        if label[root] != usize::MAX {
+            continue;
+        }
+        let id = sizes.len();
+        let mut size = 0;
+        label[root] = id;
+        let mut stack = vec![root];
+        while let Some(k) = stack.pop() {
+            size += 1;
+            let (i, j) = cells[k];
+            for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1), (1, -1), (-1, 1)] {
+                if let Some(&n) = at.get(&(i + di, j + dj)) {
+                    if label[n] == usize::MAX {
+                        label[n] = id;
+                        stack.push(n);
+                    }
+                }
+            }
+        }
+        sizes.push(size);
+    }
+    let biggest = (0..sizes.len()).max_by_key(|&k| sizes[k]).unwrap_or(0);
+    cells
+        .iter()
+        .zip(&label)
+        .filter(|(_, &l)| l == biggest)
+        .map(|(&c, _)| c)
+        .collect()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn report(
+    base: &PolyMesh,
+    conn: &Connectivity,
+    surface: &PolyMesh,
+    options: &InitOptions,
+    edge: f64,
+    angle: f64,
+    flattener: Flattener,
+    flattening: Distortion,
+    flipped_triangles: usize,
+    start: Instant,
+) -> Result<InitReport> {
+    let mut cells_by_sides = BTreeMap::new();
+    for f in &base.faces {
+        *cells_by_sides.entry(f.len()).or_insert(0) += 1;
+    }
+    let interior: Vec<usize> = (0..base.faces.len())
+        .filter(|&f| {
+            conn.face_edges[f]
+                .iter()
+                .all(|&e| !conn.is_boundary_edge(e))
+        })
+        .collect();
+    let interior_hexagons = interior
+        .iter()
+        .filter(|&&f| base.faces[f].len() == 6)
+        .count();
+    let lengths: Vec<f64> = conn
+        .edges
+        .iter()
+        .map(|&[a, b]| (base.vertices[a] - base.vertices[b]).norm())
+        .collect();
+    let mean = lengths.iter().sum::<f64>() / lengths.len() as f64;
+    let var = lengths.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / lengths.len() as f64;
+    let s = Surface::from_mesh(surface)?;
+    let distance = s
+        .closest_points(&base.vertices)
+        .iter()
+        .fold(0.0f64, |m, c| m.max(c.distance));
+    let mut valence_histogram = BTreeMap::new();
+    for v in 0..base.vertices.len() {
+        *valence_histogram.entry(conn.valence(v)).or_insert(0) += 1;
+    }
+    Ok(InitReport {
+        method: options.method,
+        flattener,
+        boundary: options.boundary,
+        vertices: base.vertices.len(),
+        edges: conn.num_edges(),
+        cells: base.faces.len(),
+        cells_by_sides,
+        interior_cells: interior.len(),
+        interior_hexagon_share: if interior.is_empty() {
+            0.0
+        } else {
+            interior_hexagons as f64 / interior.len() as f64
+        },
+        edge_length_target: edge,
+        edge_length_mean: mean,
+        edge_length_cv: var.sqrt() / mean,
+        distance_to_surface_max: distance / mean,
+        valence_histogram,
+        lattice_angle_deg: angle.to_degrees(),
+        flattening,
+        flipped_triangles,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}

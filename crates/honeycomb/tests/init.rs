@@ -1,0 +1,323 @@
+//! `init`: hex base meshes on design surfaces, judged on the meshes it makes.
+
+use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::geometry::Vec3;
+use honeycomb::init::{init, Align, BoundaryMode, CellSize, Flattener, InitOptions, Method};
+use honeycomb::mesh::{validate_base_mesh, PolyMesh};
+use honeycomb::optimize::{optimize, OptimizeOptions};
+use honeycomb::structure::measure;
+use honeycomb::surface::Surface;
+use std::path::PathBuf;
+
+fn options(cells: usize) -> InitOptions {
+    InitOptions {
+        size: CellSize::Cells(cells),
+        method: Method::Flatten,
+        align: Align::Boundary,
+        boundary: BoundaryMode::Trim,
+        flattener: Flattener::Arap,
+        seed: 0,
+    }
+}
+
+/// The design surface of a built-in shape (a triangulated height field).
+fn surface(shape: Shape) -> PolyMesh {
+    lifted_hex_patch(shape, 1500).1
+}
+
+/// What every base mesh must be: valid for `optimize` (manifold, valence 2 or 3), on S, with
+/// nearly all interior cells hexagons of nearly one size.
+fn assert_good(base: &PolyMesh, s: &PolyMesh, report: &honeycomb::init::InitReport, what: &str) {
+    validate_base_mesh(base).unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert!(report.interior_hexagon_share >= 0.95, "{what}: {report:?}");
+    assert!(
+        report.edge_length_cv <= 0.12,
+        "{what}: cv {}",
+        report.edge_length_cv
+    );
+    // Measured again here, not read from the report.
+    let surface = Surface::from_mesh(s).unwrap();
+    let mean = base.mean_edge_length();
+    let far = base
+        .vertices
+        .iter()
+        .map(|&p| surface.closest_point(p).distance)
+        .fold(0.0, f64::max);
+    assert!(far < 1e-9 * mean.max(1.0), "{what}: a vertex {far} off S");
+    assert_eq!(report.vertices, base.vertices.len());
+}
+
+#[test]
+fn hex_meshes_on_generated_surfaces() {
+    for shape in [Shape::Saddle, Shape::Dome, Shape::Cylinder, Shape::Roof] {
+        let s = surface(shape);
+        let made = init(&s, &options(700)).unwrap();
+        println!("{shape:?}: {:?}", made.report);
+        assert_good(&made.base, &s, &made.report, &format!("{shape:?}"));
+        let cells = made.base.faces.len();
+        assert!(
+            (500..=720).contains(&cells),
+            "{shape:?}: {cells} cells for 700 asked"
+        );
+        assert!(made.report.flattening.conformal_avg < 1.1);
+    }
+}
+
+/// The paper's full path: a surface, a hex mesh on it, a honeycomb. On the developable
+/// cylinder and the roof the honeycomb is reached to omega 1e-7 degrees; on the dome (0.3 deg)
+/// and the saddle the optimizer does not get there from a grid aligned with the boundary yet.
+#[test]
+fn init_then_optimize_gives_a_honeycomb() {
+    for shape in [Shape::Cylinder, Shape::Roof] {
+        let s = surface(shape);
+        let made = init(&s, &options(700)).unwrap();
+        let opt = optimize(
+            &made.base,
+            Some(&s),
+            &OptimizeOptions::default(),
+            &mut |_| {},
+        )
+        .unwrap();
+        let m = measure(&opt.honeycomb, &Surface::from_mesh(&s).unwrap());
+        println!(
+            "{shape:?}: omega {:.2e} delta {:.2e} closeness {:.2e}",
+            m.omega_max_deg, m.delta_max, m.closeness_max
+        );
+        assert!(
+            m.omega_max_deg < 0.01,
+            "{shape:?}: omega {}",
+            m.omega_max_deg
+        );
+        assert!(
+            m.delta_max < 1e-6 && m.closeness_max < 0.05,
+            "{shape:?}: {m:?}"
+        );
+    }
+}
+
+#[test]
+fn the_same_seed_gives_the_same_mesh_and_another_seed_another() {
+    let s = surface(Shape::Dome);
+    let a = init(&s, &options(300)).unwrap().base;
+    let b = init(&s, &options(300)).unwrap().base;
+    assert_eq!(a.vertices, b.vertices);
+    assert_eq!(a.faces, b.faces);
+    let c = init(
+        &s,
+        &InitOptions {
+            seed: 7,
+            ..options(300)
+        },
+    )
+    .unwrap();
+    assert_ne!(a.vertices, c.base.vertices);
+    assert_good(&c.base, &s, &c.report, "seed 7");
+}
+
+#[test]
+fn kept_boundary_cells_are_closed_against_the_boundary() {
+    let s = surface(Shape::Roof);
+    let trim = init(&s, &options(700)).unwrap();
+    let keep = init(
+        &s,
+        &InitOptions {
+            boundary: BoundaryMode::Keep,
+            ..options(700)
+        },
+    )
+    .unwrap();
+    validate_base_mesh(&keep.base).unwrap();
+    assert!(keep.base.faces.len() > trim.base.faces.len());
+    // Some vertices now lie on S's boundary, and every vertex lies on S.
+    let surface = Surface::from_mesh(&s).unwrap();
+    let on_boundary = keep
+        .base
+        .vertices
+        .iter()
+        .filter(|&&p| {
+            surface
+                .closest_boundary_point(p)
+                .is_some_and(|b| (b.point - p).norm() < 1e-9)
+        })
+        .count();
+    assert!(on_boundary > 20, "{on_boundary} vertices on the boundary");
+    assert!(keep.report.distance_to_surface_max < 1e-9);
+}
+
+#[test]
+fn strokes_turn_the_grid() {
+    // A flat square and one stroke at 20 degrees: a third of the edges follow it.
+    let flat = lifted_hex_patch(Shape::Roof, 1500).1;
+    let flat = PolyMesh::new(
+        flat.vertices
+            .iter()
+            .map(|p| Vec3::new(p.x, p.y, 0.0))
+            .collect(),
+        flat.faces.clone(),
+    );
+    let t = 20f64.to_radians();
+    let stroke = vec![Vec3::ZERO, Vec3::new(10.0 * t.cos(), 10.0 * t.sin(), 0.0)];
+    let made = init(
+        &flat,
+        &InitOptions {
+            align: Align::Strokes(vec![stroke]),
+            ..options(500)
+        },
+    )
+    .unwrap();
+    let direction = Vec3::new(t.cos(), t.sin(), 0.0);
+    let edges: Vec<f64> = made
+        .base
+        .faces
+        .iter()
+        .flat_map(|f| (0..6).map(move |k| (f[k], f[(k + 1) % 6])))
+        .map(|(a, b)| {
+            (made.base.vertices[b] - made.base.vertices[a])
+                .normalized()
+                .dot(direction)
+                .abs()
+        })
+        .collect();
+    let along = edges.iter().filter(|&&c| c > 0.9999).count();
+    assert!(
+        (along as f64 / edges.len() as f64 - 1.0 / 3.0).abs() < 0.02,
+        "{along} of {}",
+        edges.len()
+    );
+    // A flat surface is no problem for flattening: no distortion at all.
+    assert!(made.report.flattening.conformal_max < 1.0 + 1e-6);
+    assert!(made.report.edge_length_cv < 1e-6);
+}
+
+#[test]
+fn unusable_surfaces_and_sizes_are_named() {
+    let s = surface(Shape::Dome);
+    let error = |mesh: &PolyMesh, o: &InitOptions| init(mesh, o).err().unwrap().to_string();
+    // A closed surface: a cube of quads.
+    let cube = PolyMesh::new(
+        (0..8)
+            .map(|i| Vec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+            .collect(),
+        vec![
+            vec![0, 2, 3, 1],
+            vec![4, 5, 7, 6],
+            vec![0, 1, 5, 4],
+            vec![2, 6, 7, 3],
+            vec![0, 4, 6, 2],
+            vec![1, 3, 7, 5],
+        ],
+    );
+    assert!(error(&cube, &options(100)).contains("closed"));
+    // Two pieces.
+    let mut two = s.clone();
+    let n = two.vertices.len();
+    two.vertices
+        .extend(s.vertices.iter().map(|&p| p + Vec3::new(1e3, 0.0, 0.0)));
+    two.faces.extend(
+        s.faces
+            .iter()
+            .map(|f| f.iter().map(|&v| v + n).collect::<Vec<_>>()),
+    );
+    assert!(error(&two, &options(100)).contains("2 separate pieces"));
+    // Cells larger than the surface.
+    let e = error(
+        &s,
+        &InitOptions {
+            size: CellSize::EdgeLength(1e3),
+            ..options(1)
+        },
+    );
+    assert!(e.contains("no cell") && e.contains("smaller cells"), "{e}");
+    // Nonsense sizes.
+    for size in [
+        CellSize::Cells(0),
+        CellSize::Cells(10_000_000),
+        CellSize::EdgeLength(f64::NAN),
+        CellSize::EdgeLength(-1.0),
+    ] {
+        let e = error(&s, &InitOptions { size, ..options(1) });
+        assert!(e.contains("--cells") || e.contains("--edge-length"), "{e}");
+    }
+    let e = error(
+        &s,
+        &InitOptions {
+            size: CellSize::EdgeLength(1e-6),
+            ..options(1)
+        },
+    );
+    assert!(e.contains("at most"), "{e}");
+    // The field method is named as not built rather than silently replaced.
+    let e = error(
+        &s,
+        &InitOptions {
+            method: Method::Field,
+            ..options(100)
+        },
+    );
+    assert!(e.contains("not built yet"), "{e}");
+}
+
+fn shared_data() -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+    dir.is_dir().then_some(dir)
+}
+
+/// The real design surfaces (triangle and quad meshes) of ../shared/data, at about 1.5k and 8k
+/// vertices. camelhead (a strongly curved head) is beyond a flattening: its mesh is valid but
+/// its cells vary in size (cv 0.76), which the report says.
+#[test]
+fn hex_meshes_on_the_shared_surfaces() {
+    let Some(data) = shared_data() else {
+        println!("skipping: ../shared/data not found");
+        return;
+    };
+    let files = [
+        "inspired_mesh.obj",
+        "Neumunster.ply",
+        "botanic-garden-bubble.off",
+        "train-station.off",
+        "barrellvault10m.ply",
+        "YasIsland.off",
+        "free_negshell_marc_anet.obj",
+        "camelhead.off",
+    ];
+    for file in files {
+        let s = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
+        for cells in [750, 4000] {
+            let made = init(&s, &options(cells)).unwrap();
+            let r = &made.report;
+            println!(
+                "{file} {cells}: {} V, {} cells, hexagons {:.3}, cv {:.3}, {:?}, {:.2} s",
+                r.vertices,
+                r.cells,
+                r.interior_hexagon_share,
+                r.edge_length_cv,
+                r.flattener,
+                r.seconds
+            );
+            if file == "camelhead.off" {
+                validate_base_mesh(&made.base).unwrap();
+            } else {
+                assert_good(&made.base, &s, r, file);
+            }
+        }
+    }
+    // These become honeycombs (the others stop with omega far above 0.01: see the README).
+    for (file, fairness) in [
+        ("inspired_mesh.obj", 3.0),
+        ("Neumunster.ply", 3.0),
+        ("barrellvault10m.ply", 0.0),
+    ] {
+        let s = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
+        let made = init(&s, &options(750)).unwrap();
+        let mut o = OptimizeOptions::default();
+        o.weights.fairness = fairness;
+        let opt = optimize(&made.base, Some(&s), &o, &mut |_| {}).unwrap();
+        let m = measure(&opt.honeycomb, &Surface::from_mesh(&s).unwrap());
+        println!(
+            "{file}: omega {:.2e} delta {:.2e}",
+            m.omega_max_deg, m.delta_max
+        );
+        assert!(m.omega_max_deg < 0.01, "{file}: {}", m.omega_max_deg);
+    }
+}
