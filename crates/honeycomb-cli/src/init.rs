@@ -31,7 +31,8 @@ pub struct InitArgs {
     /// `trim`: drop cells the boundary cuts; `keep`: close them against the boundary.
     #[arg(long, default_value = "trim")]
     pub boundary: BoundaryMode,
-    /// With flatten: `arap` keeps lengths (cells of one size), `lscm` keeps angles only.
+    /// With flatten: `arap` keeps lengths (cells of one size on S), `lscm` keeps angles only,
+    /// `project` lays the grid in plan view along the mean normal (all node axes parallel).
     #[arg(long, default_value = "arap")]
     pub flatten: Flattener,
     /// Shifts the grid by a pseudo-random offset; the same seed gives the same mesh.

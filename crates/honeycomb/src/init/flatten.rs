@@ -26,6 +26,9 @@ pub enum Flattener {
     /// LSCM refined as-rigid-as-possible: lengths kept as well as the surface allows.
     #[default]
     Arap,
+    /// Seen along the mean normal: cells of one size in plan view, all node axes parallel
+    /// (vertical walls on a roof); for surfaces that do not fold over seen from above.
+    Project,
 }
 
 impl std::str::FromStr for Flattener {
@@ -34,7 +37,10 @@ impl std::str::FromStr for Flattener {
         match s {
             "lscm" => Ok(Flattener::Lscm),
             "arap" => Ok(Flattener::Arap),
-            _ => Err(format!("unknown flattening '{s}': expected arap or lscm")),
+            "project" => Ok(Flattener::Project),
+            _ => Err(format!(
+                "unknown flattening '{s}': expected arap, lscm or project"
+            )),
         }
     }
 }
@@ -98,13 +104,74 @@ pub fn flatten(
     triangles: &[[usize; 3]],
     flattener: Flattener,
 ) -> Result<Flattening> {
-    let n = vertices.len();
     let boundary = boundary_half_edges(triangles);
     if boundary.is_empty() {
         return Err(Error::Mesh(
             "the surface is closed (no boundary): it cannot be flattened".into(),
         ));
     }
+    let mut points = match flattener {
+        Flattener::Project => project(vertices, triangles),
+        Flattener::Lscm | Flattener::Arap => lscm(vertices, triangles, &boundary)?,
+    };
+    if flattener == Flattener::Project {
+        let folded = triangles
+            .iter()
+            .filter(|t| signed_area(&points, t) <= 0.0)
+            .count();
+        if folded > 0 {
+            return Err(Error::Mesh(format!(
+                "{folded} triangles face away from the surface's mean normal: seen along it the \
+                 surface folds over itself, so it cannot be projected (--flatten arap can)"
+            )));
+        }
+    }
+    let mut used = flattener;
+    if flattener == Flattener::Arap {
+        used = Flattener::Lscm;
+        // Kept as LSCM left it when the Laplacian cannot be factorized or the refinement
+        // turns triangles over (strongly curved pieces: the rotations cannot agree).
+        let mut refined = points.clone();
+        let flips = |p: &[Point2]| {
+            triangles
+                .iter()
+                .filter(|t| signed_area(p, t) <= 0.0)
+                .count()
+        };
+        if super::arap::refine(vertices, triangles, &mut refined, ARAP_ITERATIONS)
+            && flips(&refined) <= flips(&points)
+        {
+            points = refined;
+            used = Flattener::Arap;
+        }
+    }
+    // The same total area as the surface.
+    let area3: f64 = triangles.iter().map(|t| triangle_area(vertices, t)).sum();
+    let area2: f64 = triangles.iter().map(|t| signed_area(&points, t)).sum();
+    if area2.is_nan() || area2 <= 0.0 {
+        return Err(Error::Mesh(
+            "the flattening folded over (negative area): the surface is too far from a disk".into(),
+        ));
+    }
+    let s = (area3 / area2).sqrt();
+    for p in &mut points {
+        *p = [p[0] * s, p[1] * s];
+    }
+    let distortion = distortion(vertices, triangles, &points);
+    Ok(Flattening {
+        points,
+        flattener: used,
+        distortion,
+    })
+}
+
+/// Least-squares conformal map, two far boundary vertices pinned.
+fn lscm(
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    boundary: &[[usize; 2]],
+) -> Result<Vec<Point2>> {
+    let n = vertices.len();
     // Pin the two boundary vertices farthest apart (from the first, then from that one).
     let farthest = |from: usize| {
         boundary
@@ -158,7 +225,7 @@ pub fn flatten(
         }
     }
     // -A(u) with A = 1/2 sum over boundary a -> b of (x_a y_b - x_b y_a) = 1/2 u^T M u.
-    for &[a, b] in &boundary {
+    for &[a, b] in boundary {
         entries.push((a, 0, b, 1, -0.5));
         entries.push((b, 1, a, 0, -0.5));
         entries.push((b, 0, a, 1, 0.5));
@@ -183,7 +250,7 @@ pub fn flatten(
         ))
     })?;
     llt.solve_in_place_with_conj(faer::Conj::No, rhs.as_mut());
-    let mut points: Vec<Point2> = (0..n)
+    let points: Vec<Point2> = (0..n)
         .map(|v| match free[v] {
             usize::MAX => [pinned(v, 0), pinned(v, 1)],
             i => [rhs[(i, 0)], rhs[(i + m, 0)]],
@@ -197,42 +264,20 @@ pub fn flatten(
             "the flattening is not finite at vertex {v}: degenerate triangles around it?"
         )));
     }
-    let mut used = Flattener::Lscm;
-    if flattener == Flattener::Arap {
-        // Kept as LSCM left it when the Laplacian cannot be factorized or the refinement
-        // turns triangles over (strongly curved pieces: the rotations cannot agree).
-        let mut refined = points.clone();
-        let flips = |p: &[Point2]| {
-            triangles
-                .iter()
-                .filter(|t| signed_area(p, t) <= 0.0)
-                .count()
-        };
-        if super::arap::refine(vertices, triangles, &mut refined, ARAP_ITERATIONS)
-            && flips(&refined) <= flips(&points)
-        {
-            points = refined;
-            used = Flattener::Arap;
-        }
-    }
-    // The same total area as the surface.
-    let area3: f64 = triangles.iter().map(|t| triangle_area(vertices, t)).sum();
-    let area2: f64 = triangles.iter().map(|t| signed_area(&points, t)).sum();
-    if area2.is_nan() || area2 <= 0.0 {
-        return Err(Error::Mesh(
-            "the flattening folded over (negative area): the surface is too far from a disk".into(),
-        ));
-    }
-    let s = (area3 / area2).sqrt();
-    for p in &mut points {
-        *p = [p[0] * s, p[1] * s];
-    }
-    let distortion = distortion(vertices, triangles, &points);
-    Ok(Flattening {
-        points,
-        flattener: used,
-        distortion,
-    })
+    Ok(points)
+}
+
+/// Orthogonal projection onto the plane across the surface's mean normal (area-weighted):
+/// a grid laid there and lifted back is a honeycomb with parallel node axes from the start.
+fn project(vertices: &[Vec3], triangles: &[[usize; 3]]) -> Vec<Point2> {
+    let normal = triangles
+        .iter()
+        .map(|t| (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]))
+        .fold(Vec3::ZERO, |s, n| s + n)
+        .normalized();
+    let u = normal.any_orthogonal().normalized();
+    let v = normal.cross(u);
+    vertices.iter().map(|&p| [p.dot(u), p.dot(v)]).collect()
 }
 
 fn triangle_area(vertices: &[Vec3], t: &[usize; 3]) -> f64 {
