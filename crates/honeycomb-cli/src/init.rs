@@ -32,9 +32,10 @@ pub struct InitArgs {
     #[arg(long, default_value = "trim")]
     pub boundary: BoundaryMode,
     /// With flatten: `arap` keeps lengths (cells of one size on S), `lscm` keeps angles only,
-    /// `project` lays the grid in plan view along the mean normal (all node axes parallel).
-    #[arg(long, default_value = "arap")]
-    pub flatten: Flattener,
+    /// `project` lays the grid in plan view along the mean normal (all node axes parallel)
+    /// [default: arap; pipeline tries project, then arap].
+    #[arg(long)]
+    pub flatten: Option<Flattener>,
     /// Shifts the grid by a pseudo-random offset; the same seed gives the same mesh.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -42,6 +43,10 @@ pub struct InitArgs {
 
 impl InitArgs {
     fn options(&self) -> Result<InitOptions> {
+        self.options_with(self.flatten.unwrap_or_default())
+    }
+
+    fn options_with(&self, flattener: Flattener) -> Result<InitOptions> {
         let size = match (self.cells, self.edge_length) {
             (Some(n), _) => CellSize::Cells(n),
             (None, Some(l)) => CellSize::EdgeLength(l),
@@ -63,16 +68,16 @@ impl InitArgs {
             method: self.method,
             align,
             boundary: self.boundary,
-            flattener: self.flatten,
+            flattener,
             seed: self.seed,
         };
         options.validate()?;
         Ok(options)
     }
 
-    /// Reads nothing but `surface`; runs init with a spinner.
-    fn run(&self, surface: &PolyMesh, output: Output) -> Result<Initialized> {
-        let options = self.options()?;
+    /// Runs init on `surface` with a spinner.
+    fn run(&self, surface: &PolyMesh, output: Output, flattener: Flattener) -> Result<Initialized> {
+        let options = self.options_with(flattener)?;
         let spinner = Spinner::new(output, "making the hex mesh");
         let result = init(surface, &options);
         spinner.finish();
@@ -103,9 +108,10 @@ pub fn run(args: Args) -> Result<()> {
     let output = Output::from_flags(args.quiet, args.json);
     args.init.options()?;
     let surface = load(&args.surface, output)?;
+    let flattener = args.init.flatten.unwrap_or_default();
     let made = args
         .init
-        .run(&surface, output)
+        .run(&surface, output, flattener)
         .map_err(|e| name_file(&args.surface, e))?;
     write_mesh(&args.output, &made.base)?;
     if let Some(path) = &args.report {
@@ -173,26 +179,49 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     args.opts.options()?;
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
-    let made = args
-        .init
-        .run(&surface, output)
-        .map_err(|e| name_file(&args.surface, e))?;
-    if output == Output::Human {
-        print_report(&made, output, &args.output.join("initial.obj"))?;
-    }
     if args.output.exists() && !args.output.is_dir() {
         return Err(Error::Parameter(format!(
             "-o {}: exists and is not a directory",
             args.output.display()
         )));
     }
-    std::fs::create_dir_all(&args.output).map_err(|source| Error::Io {
-        path: args.output.clone(),
-        source,
-    })?;
-    // Before the solve, so that they are there to inspect whatever it gives.
-    write_mesh(&args.output.join("initial.obj"), &made.base)?;
-    write_mesh(&args.output.join("surface.obj"), &surface)?;
-    write_json(&args.output.join("init.json"), &made.report)?;
-    optimize_and_write(&made.base, Some(&surface), &args.opts, &args.output).map(|_| ())
+    // Without --flatten: the plan-view grid first (a honeycomb from the start wherever S does
+    // not fold over seen from above), then the ARAP one.
+    let candidates = match args.init.flatten {
+        Some(f) => vec![f],
+        None => vec![Flattener::Project, Flattener::Arap],
+    };
+    for (k, &flattener) in candidates.iter().enumerate() {
+        let last = k + 1 == candidates.len();
+        let note = |what: String| {
+            if output == Output::Human {
+                let name = format!("{flattener:?}").to_lowercase();
+                eprintln!("note: --flatten {name}: {what}; trying the next flattening");
+            }
+        };
+        let made = match args.init.run(&surface, output, flattener) {
+            Ok(made) => made,
+            Err(e) if !last => {
+                note(e.to_string());
+                continue;
+            }
+            Err(e) => return Err(name_file(&args.surface, e)),
+        };
+        if output == Output::Human {
+            print_report(&made, output, &args.output.join("initial.obj"))?;
+        }
+        std::fs::create_dir_all(&args.output).map_err(|source| Error::Io {
+            path: args.output.clone(),
+            source,
+        })?;
+        // Before the solve, so that they are there to inspect whatever it gives.
+        write_mesh(&args.output.join("initial.obj"), &made.base)?;
+        write_mesh(&args.output.join("surface.obj"), &surface)?;
+        write_json(&args.output.join("init.json"), &made.report)?;
+        match optimize_and_write(&made.base, Some(&surface), &args.opts, &args.output) {
+            Err(Error::Solver(m)) if !last => note(m),
+            result => return result.map(|_| ()),
+        }
+    }
+    unreachable!("the last candidate returns")
 }

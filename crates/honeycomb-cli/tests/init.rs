@@ -89,6 +89,68 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     assert_eq!(initial.faces, base.faces);
 }
 
+/// Without --flatten, pipeline lays the grid in plan view where it can (the dome: a honeycomb
+/// from the start) and falls back to ARAP where S folds over seen from above (a vault closing
+/// past the vertical), saying so.
+#[test]
+fn pipeline_picks_the_flattening() {
+    let tmp = TempDir::new("pipeline_auto");
+    let dome = surface_file(&tmp, "dome");
+    let dir = tmp.join("dome");
+    let out = run([
+        "pipeline",
+        dome.to_str().unwrap(),
+        "--cells",
+        "300",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(read_json(&dir, "init.json")["flattener"], "project");
+    assert!(number(&read_json(&dir, "report.json"), "omega_max_deg") < 0.01);
+    // A vault over 216 degrees of arc, 2 wide.
+    let mut obj = String::new();
+    let (n, m) = (36, 6);
+    for j in 0..=n {
+        let a = std::f64::consts::PI * (-0.1 + 1.2 * j as f64 / n as f64);
+        for i in 0..=m {
+            obj += &format!("v {} {} {}\n", 3.0 * a.cos(), i as f64, 3.0 * a.sin());
+        }
+    }
+    for j in 0..n {
+        for i in 0..m {
+            let v = |i: usize, j: usize| j * (m + 1) + i + 1;
+            obj += &format!(
+                "f {} {} {} {}\n",
+                v(i, j),
+                v(i, j + 1),
+                v(i + 1, j + 1),
+                v(i + 1, j)
+            );
+        }
+    }
+    let vault = tmp.write("vault.obj", &obj);
+    let dir = tmp.join("vault");
+    let out = run([
+        "pipeline",
+        vault.to_str().unwrap(),
+        "--cells",
+        "150",
+        "--w-fair",
+        "0",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("note: --flatten project"),
+        "{}",
+        stderr(&out)
+    );
+    assert_eq!(read_json(&dir, "init.json")["flattener"], "arap");
+    assert!(number(&read_json(&dir, "report.json"), "omega_max_deg") < 0.01);
+}
+
 /// `init SURFACE EXTRA... -o DIR/base.obj` must fail cleanly, naming every keyword.
 fn init_fails(tmp: &TempDir, surface: &Path, extra: &[&str], keywords: &[&str]) {
     let out_dir = tmp.join("out");
