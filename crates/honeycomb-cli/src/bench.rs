@@ -35,11 +35,18 @@ pub struct Args {
     /// quads, shading, prescribed axes, minimum edge length) on its test subject.
     #[arg(long)]
     pub variants: bool,
+    /// Instead of the sizes: `init` (flatten, ARAP) on a 40k-triangle roof, for 2000 and
+    /// 100000 cells.
+    #[arg(long, conflicts_with = "variants")]
+    pub init: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
     if args.variants {
         return crate::bench_variants::run(args.json);
+    }
+    if args.init {
+        return run_init(args.json);
     }
     if args.iterations == 0 || args.iterations > 1000 {
         return Err(Error::Parameter(format!(
@@ -105,6 +112,61 @@ pub fn run(args: Args) -> Result<()> {
                 factor_share,
                 s.seconds_symbolic,
                 s.factor_nnz as f64 / 1e6,
+                peak_mib
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `init` on a roof triangulated into about 40k triangles (the yardstick: Instant Meshes
+/// makes 2000 cells from such a surface in about 0.85 s).
+fn run_init(json: bool) -> Result<()> {
+    use honeycomb::generate::HeightField;
+    use honeycomb::init::{init, Align, BoundaryMode, CellSize, Flattener, InitOptions, Method};
+    let surface = HeightField {
+        shape: Shape::Roof,
+        d: 50.0,
+    }
+    .triangulate(141);
+    if !json {
+        println!(
+            "{:>10} {:>8} {:>8} {:>8} {:>10} {:>8} {:>8}",
+            "triangles", "cells", "vertices", "hex%", "edge cv", "T (s)", "peakMiB"
+        );
+    }
+    for cells in [2000, 100_000] {
+        let options = InitOptions {
+            size: CellSize::Cells(cells),
+            method: Method::Flatten,
+            align: Align::Boundary,
+            boundary: BoundaryMode::Trim,
+            flattener: Flattener::Arap,
+            seed: 0,
+        };
+        let start = Instant::now();
+        let made = init(&surface, &options)?;
+        let seconds = start.elapsed().as_secs_f64();
+        let r = &made.report;
+        let peak_mib = peak_memory_kib().map_or(f64::NAN, |k| k as f64 / 1024.0);
+        if json {
+            println!(
+                "{}",
+                serde_json::json!({
+                    "triangles": surface.faces.len(), "cells_asked": cells, "cells": r.cells,
+                    "vertices": r.vertices, "interior_hexagon_share": r.interior_hexagon_share,
+                    "edge_length_cv": r.edge_length_cv, "seconds": seconds, "peak_mib": peak_mib,
+                })
+            );
+        } else {
+            println!(
+                "{:>10} {:>8} {:>8} {:>7.1}% {:>10.4} {:>8.3} {:>8.0}",
+                surface.faces.len(),
+                r.cells,
+                r.vertices,
+                100.0 * r.interior_hexagon_share,
+                r.edge_length_cv,
+                seconds,
                 peak_mib
             );
         }
