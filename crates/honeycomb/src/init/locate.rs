@@ -22,13 +22,7 @@ pub struct Located {
 
 impl<'a> Locator<'a> {
     pub fn new(points: &'a [Point2], triangles: &'a [[usize; 3]]) -> Locator<'a> {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in points {
-            for c in 0..2 {
-                lo[c] = lo[c].min(p[c]);
-                hi[c] = hi[c].max(p[c]);
-            }
-        }
+        let (lo, hi) = super::bounds(points);
         // About two triangles per bucket.
         let area = ((hi[0] - lo[0]) * (hi[1] - lo[1])).max(1e-300);
         let cell = (2.0 * area / triangles.len().max(1) as f64)

@@ -207,6 +207,16 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
         angle,
         offset: seeded_offset(options.seed, edge),
     };
+    // The lattice covers the flat domain's bounding box: a thin diagonal strip could ask for
+    // far more cells there than the surface holds.
+    let (lo, hi) = bounds(&flat.points);
+    let covering = (hi[0] - lo[0] + 4.0 * edge) * (hi[1] - lo[1] + 4.0 * edge) / hexagon(edge);
+    if covering > 10.0 * MAX_CELLS as f64 {
+        return Err(Error::Mesh(format!(
+            "the flattened surface spreads over about {covering:.0} cells of its bounding box \
+             for {fits:.0} on the surface: too thin for a grid of this size"
+        )));
+    }
     let locator = Locator::new(&flat.points, &triangles);
     let boundary = flatten::boundary_half_edges(&triangles);
     let placed = place_cells(
@@ -422,13 +432,7 @@ fn place_cells(
     mode: BoundaryMode,
 ) -> PlacedCells {
     let triangles = locator.triangles();
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in points {
-        for c in 0..2 {
-            lo[c] = lo[c].min(p[c]);
-            hi[c] = hi[c].max(p[c]);
-        }
-    }
+    let (lo, hi) = bounds(points);
     let mut corners: HashMap<Corner, Option<Placed>> = HashMap::new();
     let mut locate_corner = |c: Corner| {
         *corners
@@ -478,6 +482,18 @@ fn place_cells(
         cells,
         corners: placed,
     }
+}
+
+/// The bounding box of planar points.
+pub(crate) fn bounds(points: &[Point2]) -> (Point2, Point2) {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
+    }
+    (lo, hi)
 }
 
 /// The nearest point of the boundary to `p`.
