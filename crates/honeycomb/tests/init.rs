@@ -277,6 +277,76 @@ fn unusable_surfaces_and_sizes_are_named() {
     assert!(e.contains("not built yet"), "{e}");
 }
 
+/// A grid of unit squares over [0, n]^2 without the squares `hole` (column, row) lists.
+fn square_with_holes(n: usize, hole: &[(usize, usize)]) -> PolyMesh {
+    let id = |i: usize, j: usize| j * (n + 1) + i;
+    let vertices = (0..=n)
+        .flat_map(|j| (0..=n).map(move |i| Vec3::new(i as f64, j as f64, 0.0)))
+        .collect();
+    let faces = (0..n)
+        .flat_map(|j| (0..n).map(move |i| (i, j)))
+        .filter(|c| !hole.contains(c))
+        .map(|(i, j)| vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
+        .collect();
+    PolyMesh::new(vertices, faces)
+}
+
+/// A hole smaller than a cell: the cells over it are dropped, leaving a gap of about one cell
+/// (a second boundary loop), and the mesh stays valid. A surface whose pieces touch at one
+/// vertex only is refused by name.
+#[test]
+fn small_holes_leave_a_gap_and_non_manifold_surfaces_are_refused() {
+    let s = square_with_holes(20, &[(10, 10)]);
+    let made = init(
+        &s,
+        &InitOptions {
+            size: CellSize::EdgeLength(1.5),
+            ..options(1)
+        },
+    )
+    .unwrap();
+    let conn = validate_base_mesh(&made.base).unwrap();
+    assert_eq!(conn.boundary_loops.len(), 2, "the hole is kept as a hole");
+    let full = init(
+        &square_with_holes(20, &[]),
+        &InitOptions {
+            size: CellSize::EdgeLength(1.5),
+            ..options(1)
+        },
+    )
+    .unwrap();
+    let lost = full.base.faces.len() - made.base.faces.len();
+    assert!(
+        (1..=3).contains(&lost),
+        "{lost} cells lost to a hole of a third of a cell"
+    );
+    let keep = InitOptions {
+        size: CellSize::EdgeLength(1.5),
+        boundary: BoundaryMode::Keep,
+        ..options(1)
+    };
+    let kept = init(&s, &keep).unwrap();
+    assert_eq!(
+        validate_base_mesh(&kept.base).unwrap().boundary_loops.len(),
+        2
+    );
+    // Two squares meeting at a corner.
+    let bowtie = PolyMesh::new(
+        vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(2.0, 1.0, 0.0),
+            Vec3::new(2.0, 2.0, 0.0),
+            Vec3::new(1.0, 2.0, 0.0),
+        ],
+        vec![vec![0, 1, 2, 3], vec![2, 4, 5, 6]],
+    );
+    let e = init(&bowtie, &options(10)).err().unwrap().to_string();
+    assert!(e.contains("non-manifold vertex 2"), "{e}");
+}
+
 fn shared_data() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
     dir.is_dir().then_some(dir)

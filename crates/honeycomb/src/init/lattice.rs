@@ -66,6 +66,23 @@ impl Lattice {
         ]
     }
 
+    /// The cell containing `p` (hexagonal rounding of its fractional cell coordinates).
+    pub fn cell_containing(&self, p: Point2) -> (i64, i64) {
+        let l = self.to_local(p);
+        let r = l[1] / (1.5 * self.edge);
+        let q = l[0] / (SQRT3 * self.edge) - 0.5 * r;
+        // Round the cube coordinates (q, r, -q-r), fixing the one that moved most.
+        let s = -q - r;
+        let (mut rq, mut rr, rs) = (q.round(), r.round(), s.round());
+        let (dq, dr, ds) = ((rq - q).abs(), (rr - r).abs(), (rs - s).abs());
+        if dq > dr && dq > ds {
+            rq = -rr - rs;
+        } else if dr > ds {
+            rr = -rq - rs;
+        }
+        (rq as i64, rr as i64)
+    }
+
     /// Every cell whose center lies within two edge lengths of the box [lo, hi].
     pub fn cells_covering(&self, lo: Point2, hi: Point2) -> Vec<(i64, i64)> {
         let pad = 2.0 * self.edge;
@@ -147,5 +164,18 @@ mod tests {
             .collect::<Vec<_>>();
         assert!(middle.len() > 20);
         assert!(middle.iter().all(|(_, &n)| n == 3));
+        // A point near a center, or inside near a corner, lies in that cell.
+        for &cell in cells.iter().take(50) {
+            let c = lattice.center(cell);
+            for k in 0..6 {
+                let corner = lattice.corner(Lattice::cell_corners(cell)[k]);
+                let p = [
+                    c[0] + 0.95 * (corner[0] - c[0]),
+                    c[1] + 0.95 * (corner[1] - c[1]),
+                ];
+                assert_eq!(lattice.cell_containing(p), cell);
+            }
+            assert_eq!(lattice.cell_containing(c), cell);
+        }
     }
 }

@@ -439,6 +439,12 @@ fn place_cells(
             .entry(c)
             .or_insert_with(|| locator.locate(lattice.corner(c)).map(Placed::Inside))
     };
+    // Cells holding a boundary vertex: over a hole smaller than a cell, all their corners can
+    // lie on S while the cell spans the hole.
+    let holding: std::collections::HashSet<(i64, i64)> = boundary
+        .iter()
+        .map(|&[a, _]| lattice.cell_containing(points[a]))
+        .collect();
     let mut cells = Vec::new();
     let mut placed: HashMap<Corner, Placed> = HashMap::new();
     for cell in lattice.cells_covering(lo, hi) {
@@ -447,6 +453,7 @@ fn place_cells(
         let all_inside = found.iter().all(Option::is_some);
         // A concave stretch of boundary can cross an edge whose ends are both inside.
         let edges_inside = all_inside
+            && !holding.contains(&cell)
             && (0..6).all(|k| {
                 let (p, q) = (lattice.corner(keys[k]), lattice.corner(keys[(k + 1) % 6]));
                 locator
@@ -460,7 +467,12 @@ fn place_cells(
             cells.push(cell);
             continue;
         }
-        if mode == BoundaryMode::Trim || locator.locate(lattice.center(cell)).is_none() {
+        // Keep closes cells cut by the boundary; one with every corner on S yet not whole
+        // spans a hole or a notch of the boundary, and is dropped in both modes.
+        if mode == BoundaryMode::Trim
+            || all_inside
+            || locator.locate(lattice.center(cell)).is_none()
+        {
             continue;
         }
         // Keep: outside corners onto the nearest boundary point; the closed cell must stay a
