@@ -347,6 +347,51 @@ fn small_holes_leave_a_gap_and_non_manifold_surfaces_are_refused() {
     assert!(e.contains("non-manifold vertex 2"), "{e}");
 }
 
+/// A surface that folds over seen along its mean normal but not from the side: a long flat
+/// plate (normal +z) that curls up and over by 170 degrees at one end. The plan view is found
+/// along the direction its worst triangle faces best.
+#[test]
+fn projection_looks_from_where_the_whole_surface_is_seen() {
+    let mut profile = Vec::new();
+    for k in 0..=40 {
+        profile.push((-20.0 + 0.5 * k as f64, 0.0));
+    }
+    for k in 1..=34 {
+        // A circle of radius 2 turning left, its tangent from +x to 170 degrees.
+        let t = (5.0 * k as f64).to_radians();
+        profile.push((2.0 * t.sin(), 2.0 - 2.0 * t.cos()));
+    }
+    let width = 12;
+    let mut vertices = Vec::new();
+    for &(x, z) in &profile {
+        for j in 0..=width {
+            vertices.push(Vec3::new(x, 0.5 * j as f64, z));
+        }
+    }
+    let id = |k: usize, j: usize| k * (width + 1) + j;
+    let mut faces = Vec::new();
+    for k in 0..profile.len() - 1 {
+        for j in 0..width {
+            // Counter-clockwise seen from +z on the plate.
+            faces.push(vec![id(k, j), id(k + 1, j), id(k + 1, j + 1), id(k, j + 1)]);
+        }
+    }
+    let curl = PolyMesh::new(vertices, faces);
+    let o = InitOptions {
+        flattener: Flattener::Project,
+        size: CellSize::EdgeLength(0.5),
+        ..options(1)
+    };
+    let made = init(&curl, &o).unwrap();
+    validate_base_mesh(&made.base).unwrap();
+    assert!(
+        made.base.faces.len() > 100,
+        "{} cells",
+        made.base.faces.len()
+    );
+    assert!(made.report.distance_to_surface_max < 1e-9);
+}
+
 fn shared_data() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
     dir.is_dir().then_some(dir)

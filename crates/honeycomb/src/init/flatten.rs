@@ -45,6 +45,9 @@ impl std::str::FromStr for Flattener {
     }
 }
 
+/// The share of S's area that may face away from the view of a projection.
+const MAX_AWAY_AREA: f64 = 1e-3;
+
 /// Local/global steps of the ARAP refinement.
 const ARAP_ITERATIONS: usize = 30;
 
@@ -115,14 +118,22 @@ pub fn flatten(
         Flattener::Lscm | Flattener::Arap => lscm(vertices, triangles, &boundary)?,
     };
     if flattener == Flattener::Project {
-        let folded = triangles
+        // A few slivers facing away (noise in the data) are let through: the cells over them
+        // are caught as folds later. More than that is a surface that overhangs.
+        let area = |t: &[usize; 3]| triangle_area(vertices, t);
+        let total: f64 = triangles.iter().map(area).sum();
+        let away: Vec<&[usize; 3]> = triangles
             .iter()
             .filter(|t| signed_area(&points, t) <= 0.0)
-            .count();
-        if folded > 0 {
+            .collect();
+        let away_area: f64 = away.iter().map(|t| area(t)).sum();
+        if away_area > MAX_AWAY_AREA * total {
             return Err(Error::Mesh(format!(
-                "{folded} triangles face away from the surface's mean normal: seen along it the \
-                 surface folds over itself, so it cannot be projected (--flatten arap can)"
+                "{} triangles ({:.1}% of the area) face away from every view direction: seen \
+                 from anywhere the surface folds over itself, so it cannot be projected \
+                 (--flatten arap can)",
+                away.len(),
+                100.0 * away_area / total
             )));
         }
     }
@@ -267,17 +278,64 @@ fn lscm(
     Ok(points)
 }
 
-/// Orthogonal projection onto the plane across the surface's mean normal (area-weighted):
-/// a grid laid there and lifted back is a honeycomb with parallel node axes from the start.
+/// Orthogonal projection onto the plane across a view direction: the surface's mean normal
+/// (area-weighted) when every triangle faces it, else the direction that the worst triangle
+/// faces best. A grid laid there and lifted back is a honeycomb with parallel node axes from
+/// the start.
 fn project(vertices: &[Vec3], triangles: &[[usize; 3]]) -> Vec<Point2> {
-    let normal = triangles
+    let normals: Vec<Vec3> = triangles
         .iter()
         .map(|t| (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]))
-        .fold(Vec3::ZERO, |s, n| s + n)
-        .normalized();
-    let u = normal.any_orthogonal().normalized();
-    let v = normal.cross(u);
+        .collect();
+    let mean = normals.iter().fold(Vec3::ZERO, |s, &n| s + n).normalized();
+    let units: Vec<Vec3> = normals
+        .iter()
+        .filter(|n| n.norm() > 0.0)
+        .map(|n| n.normalized())
+        .collect();
+    let worst = |d: Vec3| units.iter().fold(f64::INFINITY, |m, n| m.min(n.dot(d)));
+    let view = if worst(mean) > 0.0 {
+        mean
+    } else {
+        best_view(&worst, mean)
+    };
+    let u = view.any_orthogonal().normalized();
+    let v = view.cross(u);
     vertices.iter().map(|&p| [p.dot(u), p.dot(v)]).collect()
+}
+
+/// The direction maximizing `worst`: a spread of directions over the sphere, then rounds of
+/// smaller and smaller steps around the best so far (deterministic).
+fn best_view(worst: &dyn Fn(Vec3) -> f64, start: Vec3) -> Vec3 {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let spread = (0..400).map(|k| {
+        let z = 1.0 - 2.0 * (k as f64 + 0.5) / 400.0;
+        let r = (1.0 - z * z).sqrt();
+        let a = golden * k as f64;
+        Vec3::new(r * a.cos(), r * a.sin(), z)
+    });
+    let (mut best, mut value) = (start, worst(start));
+    for d in spread {
+        let w = worst(d);
+        if w > value {
+            (best, value) = (d, w);
+        }
+    }
+    let mut step = 0.1;
+    for _ in 0..6 {
+        let u = best.any_orthogonal().normalized();
+        let v = best.cross(u);
+        for k in 0..24 {
+            let a = std::f64::consts::TAU * k as f64 / 24.0;
+            let d = (best + (u * a.cos() + v * a.sin()) * step).normalized();
+            let w = worst(d);
+            if w > value {
+                (best, value) = (d, w);
+            }
+        }
+        step *= 0.5;
+    }
+    best
 }
 
 fn triangle_area(vertices: &[Vec3], t: &[usize; 3]) -> f64 {
