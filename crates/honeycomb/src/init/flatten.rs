@@ -338,7 +338,7 @@ fn best_view(worst: &dyn Fn(Vec3) -> f64, start: Vec3) -> Vec3 {
     best
 }
 
-fn triangle_area(vertices: &[Vec3], t: &[usize; 3]) -> f64 {
+pub(crate) fn triangle_area(vertices: &[Vec3], t: &[usize; 3]) -> f64 {
     0.5 * (vertices[t[1]] - vertices[t[0]])
         .cross(vertices[t[2]] - vertices[t[0]])
         .norm()

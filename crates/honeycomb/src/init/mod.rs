@@ -183,15 +183,11 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
         .count();
     let area: f64 = triangles
         .iter()
-        .map(|t| {
-            0.5 * (vertices[t[1]] - vertices[t[0]])
-                .cross(vertices[t[2]] - vertices[t[0]])
-                .norm()
-        })
+        .map(|t| flatten::triangle_area(&vertices, t))
         .sum();
     let hexagon = |l: f64| 1.5 * 3f64.sqrt() * l * l;
     let edge = match options.size {
-        CellSize::Cells(n) => (area / (n as f64 * 1.5 * 3f64.sqrt())).sqrt(),
+        CellSize::Cells(n) => (area / (n as f64 * hexagon(1.0))).sqrt(),
         CellSize::EdgeLength(l) => l,
     };
     let fits = area / hexagon(edge);
