@@ -41,6 +41,29 @@ fn init_writes_a_valid_base_mesh_and_its_report() {
     assert!(number(&r, "distance_to_surface_max") < 1e-9);
     assert!(r["cells_by_sides"]["6"].as_u64().unwrap() > 150);
     assert!(r["flattening"]["conformal_avg"].as_f64().unwrap() < 1.1);
+    // --json: the same report on stdout, nothing else; -q: nothing at all.
+    let out = run([
+        "init",
+        surface.to_str().unwrap(),
+        "--cells",
+        "250",
+        "-o",
+        base.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let printed = common::parse_json(&common::stdout(&out), "init --json");
+    assert_eq!(printed["cells"], r["cells"]);
+    let out = run([
+        "init",
+        surface.to_str().unwrap(),
+        "--cells",
+        "250",
+        "-o",
+        base.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(out.status.success() && out.stdout.is_empty() && out.stderr.is_empty());
     // The base mesh is ready for optimize.
     let dir = tmp.join("structure");
     let out = run([
