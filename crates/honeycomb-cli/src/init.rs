@@ -42,11 +42,8 @@ pub struct InitArgs {
 }
 
 impl InitArgs {
+    /// The checked options (the strokes file read once); the flattening is `--flatten` or ARAP.
     fn options(&self) -> Result<InitOptions> {
-        self.options_with(self.flatten.unwrap_or_default())
-    }
-
-    fn options_with(&self, flattener: Flattener) -> Result<InitOptions> {
         let size = match (self.cells, self.edge_length) {
             (Some(n), _) => CellSize::Cells(n),
             (None, Some(l)) => CellSize::EdgeLength(l),
@@ -68,21 +65,20 @@ impl InitArgs {
             method: self.method,
             align,
             boundary: self.boundary,
-            flattener,
+            flattener: self.flatten.unwrap_or_default(),
             seed: self.seed,
         };
         options.validate()?;
         Ok(options)
     }
+}
 
-    /// Runs init on `surface` with a spinner.
-    fn run(&self, surface: &PolyMesh, output: Output, flattener: Flattener) -> Result<Initialized> {
-        let options = self.options_with(flattener)?;
-        let spinner = Spinner::new(output, "making the hex mesh");
-        let result = init(surface, &options);
-        spinner.finish();
-        result
-    }
+/// Runs init on `surface` with a spinner.
+fn make(surface: &PolyMesh, options: &InitOptions, output: Output) -> Result<Initialized> {
+    let spinner = Spinner::new(output, "making the hex mesh");
+    let result = init(surface, options);
+    spinner.finish();
+    result
 }
 
 #[derive(clap::Args)]
@@ -106,13 +102,9 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     let output = Output::from_flags(args.quiet, args.json);
-    args.init.options()?;
+    let options = args.init.options()?;
     let surface = load(&args.surface, output)?;
-    let flattener = args.init.flatten.unwrap_or_default();
-    let made = args
-        .init
-        .run(&surface, output, flattener)
-        .map_err(|e| name_file(&args.surface, e))?;
+    let made = make(&surface, &options, output).map_err(|e| name_file(&args.surface, e))?;
     write_mesh(&args.output, &made.base)?;
     if let Some(path) = &args.report {
         write_json(path, &made.report)?;
@@ -175,7 +167,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
             "pipeline takes the surface as its argument; --surface is for `optimize`".into(),
         ));
     }
-    args.init.options()?;
+    let options = args.init.options()?;
     args.opts.options()?;
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
@@ -199,7 +191,11 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
                 eprintln!("note: --flatten {name}: {what}; trying the next flattening");
             }
         };
-        let made = match args.init.run(&surface, output, flattener) {
+        let options = InitOptions {
+            flattener,
+            ..options.clone()
+        };
+        let made = match make(&surface, &options, output) {
             Ok(made) => made,
             Err(e) if !last => {
                 note(e.to_string());

@@ -10,14 +10,7 @@ use honeycomb::surface::Surface;
 use std::path::PathBuf;
 
 fn options(cells: usize) -> InitOptions {
-    InitOptions {
-        size: CellSize::Cells(cells),
-        method: Method::Flatten,
-        align: Align::Boundary,
-        boundary: BoundaryMode::Trim,
-        flattener: Flattener::Arap,
-        seed: 0,
-    }
+    InitOptions::new(CellSize::Cells(cells))
 }
 
 /// The design surface of a built-in shape (a triangulated height field).

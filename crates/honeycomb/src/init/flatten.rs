@@ -73,6 +73,10 @@ pub struct Flattening {
     pub points: Vec<Point2>,
     /// What was used: LSCM when the ARAP refinement was asked for but failed.
     pub flattener: Flattener,
+    /// Triangles the flattening turned over (0 for a good one).
+    pub flipped: usize,
+    /// The surface's area, which the flat domain has too.
+    pub area: f64,
     pub distortion: Distortion,
 }
 
@@ -113,6 +117,7 @@ pub fn flatten(
             "the surface is closed (no boundary): it cannot be flattened".into(),
         ));
     }
+    let area3: f64 = triangles.iter().map(|t| triangle_area(vertices, t)).sum();
     let mut points = match flattener {
         Flattener::Project => project(vertices, triangles),
         Flattener::Lscm | Flattener::Arap => lscm(vertices, triangles, &boundary)?,
@@ -120,20 +125,18 @@ pub fn flatten(
     if flattener == Flattener::Project {
         // A few slivers facing away (noise in the data) are let through: the cells over them
         // are caught as folds later. More than that is a surface that overhangs.
-        let area = |t: &[usize; 3]| triangle_area(vertices, t);
-        let total: f64 = triangles.iter().map(area).sum();
         let away: Vec<&[usize; 3]> = triangles
             .iter()
             .filter(|t| signed_area(&points, t) <= 0.0)
             .collect();
-        let away_area: f64 = away.iter().map(|t| area(t)).sum();
-        if away_area > MAX_AWAY_AREA * total {
+        let away_area: f64 = away.iter().map(|t| triangle_area(vertices, t)).sum();
+        if away_area > MAX_AWAY_AREA * area3 {
             return Err(Error::Mesh(format!(
                 "{} triangles ({:.1}% of the area) face away from every view direction: seen \
                  from anywhere the surface folds over itself, so it cannot be projected \
                  (--flatten arap can)",
                 away.len(),
-                100.0 * away_area / total
+                100.0 * away_area / area3
             )));
         }
     }
@@ -143,21 +146,14 @@ pub fn flatten(
         // Kept as LSCM left it when the Laplacian cannot be factorized or the refinement
         // turns triangles over (strongly curved pieces: the rotations cannot agree).
         let mut refined = points.clone();
-        let flips = |p: &[Point2]| {
-            triangles
-                .iter()
-                .filter(|t| signed_area(p, t) <= 0.0)
-                .count()
-        };
         if super::arap::refine(vertices, triangles, &mut refined, ARAP_ITERATIONS)
-            && flips(&refined) <= flips(&points)
+            && flipped(&refined, triangles) <= flipped(&points, triangles)
         {
             points = refined;
             used = Flattener::Arap;
         }
     }
     // The same total area as the surface.
-    let area3: f64 = triangles.iter().map(|t| triangle_area(vertices, t)).sum();
     let area2: f64 = triangles.iter().map(|t| signed_area(&points, t)).sum();
     if area2.is_nan() || area2 <= 0.0 {
         return Err(Error::Mesh(
@@ -170,6 +166,8 @@ pub fn flatten(
     }
     let distortion = distortion(vertices, triangles, &points);
     Ok(Flattening {
+        flipped: flipped(&points, triangles),
+        area: area3,
         points,
         flattener: used,
         distortion,
@@ -338,10 +336,18 @@ fn best_view(worst: &dyn Fn(Vec3) -> f64, start: Vec3) -> Vec3 {
     best
 }
 
-pub(crate) fn triangle_area(vertices: &[Vec3], t: &[usize; 3]) -> f64 {
+fn triangle_area(vertices: &[Vec3], t: &[usize; 3]) -> f64 {
     0.5 * (vertices[t[1]] - vertices[t[0]])
         .cross(vertices[t[2]] - vertices[t[0]])
         .norm()
+}
+
+/// How many triangles face the other way in the plane.
+fn flipped(points: &[Point2], triangles: &[[usize; 3]]) -> usize {
+    triangles
+        .iter()
+        .filter(|t| signed_area(points, t) <= 0.0)
+        .count()
 }
 
 pub fn signed_area(points: &[Point2], t: &[usize; 3]) -> f64 {

@@ -144,6 +144,19 @@ pub struct Initialized {
 }
 
 impl InitOptions {
+    /// Cells of `size`, the rest as `honeycomb init` has it by default: flatten with ARAP,
+    /// aligned with the boundary, cut cells trimmed, no shift.
+    pub fn new(size: CellSize) -> InitOptions {
+        InitOptions {
+            size,
+            method: Method::Flatten,
+            align: Align::Boundary,
+            boundary: BoundaryMode::Trim,
+            flattener: Flattener::Arap,
+            seed: 0,
+        }
+    }
+
     pub fn validate(&self) -> Result<()> {
         match self.size {
             CellSize::Cells(n) if n == 0 || n > MAX_CELLS => Err(Error::Parameter(format!(
@@ -177,14 +190,7 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     }
     let (vertices, triangles) = surface.star_triangulated();
     let flat = flatten(&vertices, &triangles, options.flattener)?;
-    let flipped = triangles
-        .iter()
-        .filter(|t| flatten::signed_area(&flat.points, t) <= 0.0)
-        .count();
-    let area: f64 = triangles
-        .iter()
-        .map(|t| flatten::triangle_area(&vertices, t))
-        .sum();
+    let area = flat.area;
     let hexagon = |l: f64| 1.5 * 3f64.sqrt() * l * l;
     let edge = match options.size {
         CellSize::Cells(n) => (area / (n as f64 * hexagon(1.0))).sqrt(),
@@ -284,7 +290,7 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
         angle,
         flat.flattener,
         flat.distortion,
-        flipped,
+        flat.flipped,
         start,
     )?;
     Ok(Initialized { base, report })
