@@ -73,11 +73,7 @@ pub fn run(args: Args) -> Result<()> {
     for &size in &args.sizes {
         let (base, surface) = lifted_hex_patch(args.shape, size);
         let options = OptimizeOptions {
-            solver: SolverOptions {
-                max_iterations: args.iterations,
-                tolerance: 0.0,
-                ..SolverOptions::default()
-            },
+            solver: all_iterations(args.iterations),
             ..OptimizeOptions::default()
         };
         let start = Instant::now();
@@ -119,11 +115,20 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
+/// Solver options that run every iteration (the convergence test off), so rows compare.
+pub fn all_iterations(iterations: usize) -> SolverOptions {
+    SolverOptions {
+        max_iterations: iterations,
+        tolerance: 0.0,
+        ..SolverOptions::default()
+    }
+}
+
 /// `init` on a roof triangulated into about 40k triangles (the yardstick: Instant Meshes
 /// makes 2000 cells from such a surface in about 0.85 s).
 fn run_init(json: bool) -> Result<()> {
     use honeycomb::generate::HeightField;
-    use honeycomb::init::{init, Align, BoundaryMode, CellSize, Flattener, InitOptions, Method};
+    use honeycomb::init::{init, CellSize, InitOptions};
     let surface = HeightField {
         shape: Shape::Roof,
         d: 50.0,
@@ -136,14 +141,7 @@ fn run_init(json: bool) -> Result<()> {
         );
     }
     for cells in [2000, 100_000] {
-        let options = InitOptions {
-            size: CellSize::Cells(cells),
-            method: Method::Flatten,
-            align: Align::Boundary,
-            boundary: BoundaryMode::Trim,
-            flattener: Flattener::Arap,
-            seed: 0,
-        };
+        let options = InitOptions::new(CellSize::Cells(cells));
         let start = Instant::now();
         let made = init(&surface, &options)?;
         let seconds = start.elapsed().as_secs_f64();

@@ -1,6 +1,7 @@
 //! `honeycomb bench --variants`: one row per variant of the paper's section 4 on the generated
 //! subject of its test, beside the time of the paper's Figure 16 row where it has one.
 
+use crate::bench::all_iterations;
 use honeycomb::analysis::{extruded_along_normals, light_share, DEFAULT_LIGHT_SAMPLES};
 use honeycomb::generate::{lifted_hex_patch, roof, Shape, ROOF_AMPLITUDE};
 use honeycomb::mesh::PolyMesh;
@@ -9,7 +10,6 @@ use honeycomb::optimize::{
     QuadPattern, Weights,
 };
 use honeycomb::report::Report;
-use honeycomb::solve::SolverOptions;
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
 use honeycomb::{Result, Vec3};
@@ -26,14 +26,6 @@ struct Case {
     light: Option<Vec3>,
 }
 
-fn solver(iterations: usize) -> SolverOptions {
-    SolverOptions {
-        max_iterations: iterations,
-        tolerance: 0.0,
-        ..SolverOptions::default()
-    }
-}
-
 fn cases() -> Result<Vec<Case>> {
     let dome = |n| lifted_hex_patch(Shape::Dome, n);
     // Zigzag: 4 iterations reach omega_max 4e-3 deg (5, the paper's count, 9e-3) and the same
@@ -46,7 +38,7 @@ fn cases() -> Result<Vec<Case>> {
         paper_seconds: (pattern == QuadPattern::Zigzag).then_some(3.0),
         subject: roof(3500, amplitude),
         options: OptimizeOptions {
-            solver: solver(iterations),
+            solver: all_iterations(iterations),
             weights: Weights {
                 closeness: 0.1,
                 ..Weights::default()
@@ -70,7 +62,7 @@ fn cases() -> Result<Vec<Case>> {
             paper_seconds: Some(2.0),
             subject,
             options: OptimizeOptions {
-                solver: solver(20),
+                solver: all_iterations(20),
                 thickness: Some(1.2 * edge),
                 min_edge: Some(0.3 * edge),
                 axes: Some(AxesOptions {
@@ -86,21 +78,14 @@ fn cases() -> Result<Vec<Case>> {
     let tilt = Vec3::new(10f64.to_radians().sin(), 0.0, 10f64.to_radians().cos());
     let min_edge = dome(1500);
     // As in tests/optimize.rs: 5% above the shortest edge the dome starts with.
-    let shortest = 1.05
-        * min_edge
-            .0
-            .faces
-            .iter()
-            .flat_map(|f| (0..f.len()).map(move |k| (f[k], f[(k + 1) % f.len()])))
-            .map(|(a, b)| (min_edge.0.vertices[a] - min_edge.0.vertices[b]).norm())
-            .fold(f64::INFINITY, f64::min);
+    let shortest = 1.05 * min_edge.0.shortest_edge_length();
     Ok(vec![
         Case {
             name: "parallel",
             paper_seconds: Some(4.0),
             subject: dome(6144),
             options: OptimizeOptions {
-                solver: solver(5),
+                solver: all_iterations(5),
                 parallel: Some(ParallelOptions::default()),
                 ..OptimizeOptions::default()
             },
@@ -120,7 +105,7 @@ fn cases() -> Result<Vec<Case>> {
             paper_seconds: None,
             subject: (tilted.0.clone(), tilted.1),
             options: OptimizeOptions {
-                solver: solver(5),
+                solver: all_iterations(5),
                 axes: Some(AxesOptions {
                     targets: vec![tilt; tilted.0.vertices.len()],
                     weight: AxesOptions::DEFAULT_WEIGHT,
@@ -134,7 +119,7 @@ fn cases() -> Result<Vec<Case>> {
             paper_seconds: None,
             subject: min_edge,
             options: OptimizeOptions {
-                solver: solver(15),
+                solver: all_iterations(15),
                 min_edge: Some(shortest),
                 ..OptimizeOptions::default()
             },

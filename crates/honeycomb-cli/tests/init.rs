@@ -2,8 +2,10 @@
 
 mod common;
 
-use common::{assert_clean_failure, demo, number, read_json, run, stderr, TempDir};
-use honeycomb::mesh::{read_mesh, validate_base_mesh};
+use common::{
+    assert_clean_failure, demo, number, read_json, read_written_mesh, run, stderr, TempDir,
+};
+use honeycomb::mesh::validate_base_mesh;
 use std::path::{Path, PathBuf};
 
 /// The design surface of a small built-in demo (`shape`), written by `demo`.
@@ -31,7 +33,7 @@ fn init_writes_a_valid_base_mesh_and_its_report() {
         "-q",
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
-    let mesh = read_mesh(&base).unwrap().mesh;
+    let mesh = read_written_mesh(&base);
     validate_base_mesh(&mesh).unwrap();
     let r = read_json(report.parent().unwrap(), "init.json");
     assert_eq!(number(&r, "vertices") as usize, mesh.vertices.len());
@@ -107,8 +109,8 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     }
     let report = read_json(&dir, "report.json");
     assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
-    let initial = read_mesh(&dir.join("initial.obj")).unwrap().mesh;
-    let base = read_mesh(&dir.join("base.obj")).unwrap().mesh;
+    let initial = read_written_mesh(&dir.join("initial.obj"));
+    let base = read_written_mesh(&dir.join("base.obj"));
     assert_eq!(initial.faces, base.faces);
 }
 

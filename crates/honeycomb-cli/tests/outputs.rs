@@ -4,21 +4,15 @@
 mod common;
 
 use common::{
-    assert_clean_failure, assert_success, entries, number, parse_json, run, stderr, stdout,
-    TempDir, REPORT_KEYS,
+    assert_clean_failure, assert_success, entries, mesh_edges, number, parse_json,
+    read_written_mesh, run, stderr, stdout, TempDir, REPORT_KEYS,
 };
 use honeycomb::generate::hex_disk;
-use honeycomb::mesh::{read_mesh, write_mesh, PolyMesh};
+use honeycomb::mesh::{write_mesh, PolyMesh};
 use honeycomb::report::Report;
 use honeycomb::Vec3;
 use std::collections::BTreeSet;
 use std::path::Path;
-
-fn read(path: &Path) -> PolyMesh {
-    let loaded = read_mesh(path).unwrap_or_else(|e| panic!("read {}: {e}", path.display()));
-    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
-    loaded.mesh
-}
 
 fn report(dir: &Path) -> serde_json::Value {
     let path = dir.join("report.json");
@@ -69,18 +63,6 @@ fn vertex_line_count(path: &Path) -> usize {
         .lines()
         .filter(|l| l.starts_with("v "))
         .count()
-}
-
-/// The undirected edges of a polygon mesh, each as (low, high).
-fn edges(mesh: &PolyMesh) -> Vec<[usize; 2]> {
-    let mut set = BTreeSet::new();
-    for face in &mesh.faces {
-        for k in 0..face.len() {
-            let (a, b) = (face[k], face[(k + 1) % face.len()]);
-            set.insert([a.min(b), a.max(b)]);
-        }
-    }
-    set.into_iter().collect()
 }
 
 /// Shortest distance between the segments p0-p1 and q0-q1 (Ericson, Real-Time Collision
@@ -205,7 +187,7 @@ struct Recomputed {
 
 fn recompute(base: &PolyMesh, offset: &PolyMesh, surface: &PolyMesh) -> Recomputed {
     let (m, o) = (&base.vertices, &offset.vertices);
-    let edges = edges(base);
+    let edges = mesh_edges(base);
     let mean_edge = edges
         .iter()
         .map(|&[a, b]| (m[a] - m[b]).norm())
@@ -335,16 +317,16 @@ fn demo_writes_a_consistent_structure_and_optimize_reproduces_it() {
         face_lines(&offset_path),
         "base and offset faces differ"
     );
-    let walls = read(&walls_path);
+    let walls = read_written_mesh(&walls_path);
     assert_eq!(walls.faces.len(), ne, "one wall per edge");
     assert_eq!(walls.vertices.len(), 2 * nv);
     assert!(walls.faces.iter().all(|f| f.len() == 4), "walls are quads");
 
-    let base = read(&base_path);
-    let offset = read(&offset_path);
+    let base = read_written_mesh(&base_path);
+    let offset = read_written_mesh(&offset_path);
     assert_eq!(base.faces, offset.faces);
     assert_eq!(
-        edges(&base).len(),
+        mesh_edges(&base).len(),
         ne,
         "report.edges is the edge count of base.obj"
     );
@@ -359,12 +341,15 @@ fn demo_writes_a_consistent_structure_and_optimize_reproduces_it() {
             [a.min(b), a.max(b)]
         })
         .collect();
-    assert_eq!(wall_edges.into_iter().collect::<Vec<_>>(), edges(&base));
+    assert_eq!(
+        wall_edges.into_iter().collect::<Vec<_>>(),
+        mesh_edges(&base)
+    );
     assert_eq!(walls.vertices[..nv], base.vertices[..]);
     assert_eq!(walls.vertices[nv..], offset.vertices[..]);
 
     // The measures, recomputed here from the files.
-    let surface = read(&out.join("surface.obj"));
+    let surface = read_written_mesh(&out.join("surface.obj"));
     let r = recompute(&base, &offset, &surface);
     println!(
         "demo: |V| {nv} |E| {ne} omega_max {:.2e} deg delta_max {:.2e} closeness_max {:.2e} \

@@ -3,29 +3,11 @@
 
 mod common;
 
-use common::{assert_clean_failure, demo, number, read_json, run, stdout, TempDir};
+use common::{
+    assert_clean_failure, demo, mesh_edges, number, read_json, read_written_mesh, run, stdout,
+    TempDir,
+};
 use honeycomb::geometry::Vec3;
-use honeycomb::mesh::{read_mesh, PolyMesh};
-use std::path::Path;
-
-fn read(path: &Path) -> PolyMesh {
-    read_mesh(path)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-        .mesh
-}
-
-/// The edges of a mesh, each once, as (lower, higher) vertex index.
-fn edges(mesh: &PolyMesh) -> Vec<[usize; 2]> {
-    let mut edges: Vec<[usize; 2]> = mesh
-        .faces
-        .iter()
-        .flat_map(|f| (0..f.len()).map(move |k| [f[k], f[(k + 1) % f.len()]]))
-        .map(|[a, b]| [a.min(b), a.max(b)])
-        .collect();
-    edges.sort_unstable();
-    edges.dedup();
-    edges
-}
 
 /// Distance between the diagonals of a quad over its mean edge length (DESIGN.md section 3).
 fn quad_delta(p: [Vec3; 4]) -> f64 {
@@ -42,11 +24,14 @@ fn parallel_meshes_have_parallel_edges_and_the_asked_depth() {
     let dir = tmp.join("out");
     demo(&dir, &["--vertices", "600", "--parallel", "--depth", "0.5"]);
     let report = read_json(&dir, "report.json");
-    let (base, offset) = (read(&dir.join("base.obj")), read(&dir.join("offset.obj")));
+    let (base, offset) = (
+        read_written_mesh(&dir.join("base.obj")),
+        read_written_mesh(&dir.join("offset.obj")),
+    );
     assert_eq!(base.faces, offset.faces);
     // Recomputed from the files: corresponding edges are parallel, depths are 0.5.
     let mut beta_max = 0.0f64;
-    for [a, b] in edges(&base) {
+    for [a, b] in mesh_edges(&base) {
         let e = (base.vertices[b] - base.vertices[a]).normalized();
         let f = (offset.vertices[b] - offset.vertices[a]).normalized();
         beta_max = beta_max.max(e.cross(f).norm().asin().to_degrees());
@@ -72,7 +57,10 @@ fn quads_are_written_planar_on_the_optimized_vertices() {
     let dir = tmp.join("out");
     demo(&dir, &["--vertices", "600", "--quads", "zigzag"]);
     let report = read_json(&dir, "report.json");
-    let (base, quads) = (read(&dir.join("base.obj")), read(&dir.join("quads.obj")));
+    let (base, quads) = (
+        read_written_mesh(&dir.join("base.obj")),
+        read_written_mesh(&dir.join("quads.obj")),
+    );
     assert_eq!(base.vertices, quads.vertices);
     let hexagons = base.faces.iter().filter(|f| f.len() == 6).count();
     let split: Vec<&Vec<usize>> = quads.faces.iter().take(2 * hexagons).collect();
@@ -100,7 +88,7 @@ fn prescribed_axes_are_followed() {
     let tmp = TempDir::new("axes");
     let dir = tmp.join("first");
     demo(&dir, &["--vertices", "300"]);
-    let base = read(&dir.join("base.obj"));
+    let base = read_written_mesh(&dir.join("base.obj"));
     // Every axis tilted 10 degrees from the vertical, the same way.
     let target = Vec3::new(10f64.to_radians().sin(), 0.0, 10f64.to_radians().cos());
     let line = format!("{} {} {}\n", target.x, target.y, target.z);
@@ -121,7 +109,10 @@ fn prescribed_axes_are_followed() {
     ]);
     assert!(output.status.success(), "{}", common::stderr(&output));
     let report = read_json(&out, "report.json");
-    let (m, m2) = (read(&out.join("base.obj")), read(&out.join("offset.obj")));
+    let (m, m2) = (
+        read_written_mesh(&out.join("base.obj")),
+        read_written_mesh(&out.join("offset.obj")),
+    );
     let mut worst = 0.0f64;
     for (v, w) in m.vertices.iter().zip(&m2.vertices) {
         let axis = (*w - *v).normalized();
@@ -167,8 +158,8 @@ fn shading_reports_the_light_before_and_after_per_direction() {
     assert!(number(&report, "omega_max_deg") < 0.5);
     assert!(number(&report, "axes_angle_avg_deg") < 5.0);
     // The minimum edge length that shading turns on by default holds in base.obj.
-    let base = read(&dir.join("base.obj"));
-    let shortest = edges(&base)
+    let base = read_written_mesh(&dir.join("base.obj"));
+    let shortest = mesh_edges(&base)
         .iter()
         .map(|&[a, b]| (base.vertices[b] - base.vertices[a]).norm())
         .fold(f64::INFINITY, f64::min);
@@ -180,8 +171,8 @@ fn minimum_edge_length_holds() {
     let tmp = TempDir::new("min_edge");
     let dir = tmp.join("out");
     demo(&dir, &["--vertices", "300", "--min-edge", "0.9"]);
-    let base = read(&dir.join("base.obj"));
-    for [a, b] in edges(&base) {
+    let base = read_written_mesh(&dir.join("base.obj"));
+    for [a, b] in mesh_edges(&base) {
         let length = (base.vertices[b] - base.vertices[a]).norm();
         assert!(length >= 0.9 * (1.0 - 1e-6), "edge {a}-{b}: {length}");
     }
@@ -278,7 +269,7 @@ fn bad_axes_and_sun_path_files_are_named() {
     };
     let too_few = tmp.write("few.txt", "0 0 1\n0 0 1\n");
     optimize_fails(&["--axes", too_few.to_str().unwrap()], &["few.txt", "2"]);
-    let nv = read(&base).vertices.len();
+    let nv = read_written_mesh(&base).vertices.len();
     let mut text = "0 0 1\n".repeat(nv - 1);
     text.push_str("0 nan 1\n");
     let nan = tmp.write("nan.txt", &text);

@@ -198,12 +198,7 @@ fn guided_axes_follow_the_normals_of_a_cylinder() {
 #[test]
 fn a_minimum_edge_length_holds_after_optimization() {
     let (base, surface) = lifted_hex_patch(Shape::Saddle, 1500);
-    let shortest = base
-        .faces
-        .iter()
-        .flat_map(|f| (0..f.len()).map(move |k| (f[k], f[(k + 1) % f.len()])))
-        .map(|(a, b)| (base.vertices[a] - base.vertices[b]).norm())
-        .fold(f64::INFINITY, f64::min);
+    let shortest = base.shortest_edge_length();
     let target = 1.05 * shortest;
     let options = OptimizeOptions {
         min_edge: Some(target),

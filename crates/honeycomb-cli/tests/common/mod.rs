@@ -177,3 +177,23 @@ pub fn read_json(dir: &Path, name: &str) -> serde_json::Value {
         .unwrap_or_else(|e| panic!("{}: {e}", dir.join(name).display()));
     parse_json(&text, name)
 }
+
+/// A mesh the binary wrote, which must read back without a warning.
+pub fn read_written_mesh(path: &Path) -> honeycomb::mesh::PolyMesh {
+    let loaded =
+        honeycomb::mesh::read_mesh(path).unwrap_or_else(|e| panic!("read {}: {e}", path.display()));
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    loaded.mesh
+}
+
+/// The undirected edges of a polygon mesh, each once as (low, high), sorted.
+pub fn mesh_edges(mesh: &honeycomb::mesh::PolyMesh) -> Vec<[usize; 2]> {
+    let mut set = std::collections::BTreeSet::new();
+    for face in &mesh.faces {
+        for k in 0..face.len() {
+            let (a, b) = (face[k], face[(k + 1) % face.len()]);
+            set.insert([a.min(b), a.max(b)]);
+        }
+    }
+    set.into_iter().collect()
+}

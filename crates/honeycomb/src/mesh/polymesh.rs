@@ -34,6 +34,15 @@ impl PolyMesh {
         }
     }
 
+    /// Length of the shortest edge (infinite for a mesh without edges).
+    pub fn shortest_edge_length(&self) -> f64 {
+        self.faces
+            .iter()
+            .flat_map(|f| (0..f.len()).map(move |k| (f[k], f[(k + 1) % f.len()])))
+            .map(|(a, b)| (self.vertices[a] - self.vertices[b]).norm())
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Applies `p -> (p - center) * scale` to every vertex.
     pub fn transform(&mut self, center: Vec3, scale: f64) {
         for v in &mut self.vertices {
