@@ -11,6 +11,7 @@ pub mod export;
 pub mod generate;
 pub mod geometry;
 pub mod init;
+pub mod interactive;
 pub mod mesh;
 pub mod optimize;
 pub mod render;

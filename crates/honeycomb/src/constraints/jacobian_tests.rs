@@ -185,3 +185,37 @@ fn boundary_curve_matches_finite_differences() {
         "boundary vertices should have zero residual"
     );
 }
+
+/// The editor's target families, with targets on some vertices and none on others.
+#[test]
+fn target_families_match_finite_differences() {
+    let (_, mesh, surface, conn) = saddle();
+    let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+    let normals = initial_normals(&mesh, &conn, &surface);
+    let mut x = layout.pack(&mesh.vertices, &normals);
+    for (i, xi) in x.iter_mut().enumerate() {
+        *xi += 0.05 * jitter(i + 3);
+    }
+    let positions = SharedTargets::new(mesh.vertices.len());
+    let axes = SharedTargets::new(mesh.vertices.len());
+    for v in (0..mesh.vertices.len()).step_by(7) {
+        positions.set_one(v, Some(mesh.vertices[v] + Vec3::new(0.3, -0.2, 0.1)));
+        axes.set_one(v, Some(Vec3::new(jitter(v), 0.2, 1.0).normalized()));
+    }
+    let mut fams: Vec<Box<dyn Constraint>> = vec![
+        Box::new(VertexTargets {
+            layout,
+            targets: positions.clone(),
+            weight: 1.0,
+        }),
+        Box::new(AxisTargets::new(layout, &conn.edges, axes.clone(), 0.1)),
+    ];
+    assert_families_match(&mut fams, &x, &["vertex_targets", "axis_targets"]);
+    // A vertex without a target contributes nothing; one with a target its offset.
+    let mut res = vec![0.0; fams[0].num_rows()];
+    let mut jac = vec![0.0; fams[0].num_rows()];
+    fams[0].evaluate(&x, &mut res, &mut jac);
+    assert_eq!(&res[3..6], &[0.0, 0.0, 0.0]);
+    let expected = layout.vertex_at(&x, 0) - positions.get()[0].unwrap();
+    assert!((Vec3::from_slice(&res[0..3]) - expected).norm() < 1e-15);
+}

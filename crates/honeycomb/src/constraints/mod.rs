@@ -13,6 +13,7 @@ mod parallel_mesh;
 mod polyline_fairness;
 mod prescribed_axes;
 mod quad_planarity;
+mod targets;
 mod wall_consistency;
 
 pub use boundary_curve::BoundaryCurve;
@@ -27,6 +28,7 @@ pub use parallel_mesh::{ConstantDepth, EdgeParallelity, OffsetBlock, OffsetOnAxi
 pub use polyline_fairness::{LateralRun, StraightFairness, ZigzagFairness};
 pub use prescribed_axes::PrescribedAxes;
 pub use quad_planarity::{QuadNormalBlock, QuadNormalization, QuadPlanarity};
+pub use targets::{AxisTargets, SharedTargets, VertexTargets};
 pub use wall_consistency::WallConsistency;
 
 #[cfg(test)]

@@ -8,4 +8,6 @@ mod ordering;
 mod solver;
 
 pub use constraint::{jacobian_fd_error, Constraint, Role};
-pub use solver::{FamilyResidual, GuidedProjection, IterationInfo, SolveReport, SolverOptions};
+pub use solver::{
+    FamilyResidual, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
+};

@@ -159,103 +159,114 @@ impl<'a> GuidedProjection<'a> {
         opts: &SolverOptions,
         progress: &mut dyn FnMut(&IterationInfo),
     ) -> Result<SolveReport> {
+        let mut state = SolveState::new(opts.eps);
+        while state.history.len() < opts.max_iterations {
+            match self.iterate(x, &mut state, opts)? {
+                Some(info) => progress(&info),
+                None => break,
+            }
+        }
+        Ok(self.report(x, state, opts))
+    }
+
+    /// One guided-projection step on `x` from `state` (an editor drives the solve this way,
+    /// one step at a time, and can change targets between steps). `None`: the conditions are
+    /// met already and nothing was done.
+    pub fn iterate(
+        &mut self,
+        x: &mut [f64],
+        state: &mut SolveState,
+        opts: &SolverOptions,
+    ) -> Result<Option<IterationInfo>> {
         let n = x.len();
         if let Some(i) = x.iter().position(|v| !v.is_finite()) {
-            return Err(Error::Solver(format!(
-                "initial value of unknown {i} is not finite"
-            )));
+            return Err(Error::Solver(format!("unknown {i} is not finite")));
         }
-        let (mut t_assembly, mut t_factor, mut t_other) =
-            (Duration::ZERO, Duration::ZERO, Duration::ZERO);
-        let eps0 = opts.eps;
-        let mut eps = opts.eps;
-        let mut rhs = vec![0.0; n];
-        let mut trial = vec![0.0; n];
-        let mut history = Vec::new();
-        let mut factorizations = 0;
-        let mut converged = false;
-
-        for iteration in 0..opts.max_iterations {
-            self.iteration = iteration;
-            let t = Instant::now();
-            for c in &mut self.families {
-                c.refresh(x);
-            }
-            t_other += t.elapsed();
-
-            let t = Instant::now();
-            let (energy, max_residual) = self.evaluate(x, eps, eps0);
-            if max_residual < opts.tolerance {
-                converged = true;
-                t_assembly += t.elapsed();
-                break;
-            }
-            self.matrix.clear(&mut rhs);
-            for f in 0..self.families.len() {
-                let w = self.weight(f, eps, eps0);
-                self.matrix
-                    .add_family(f, w, &self.residuals[f], &self.jacobians[f], &mut rhs);
-            }
-            self.matrix.add_diagonal(eps);
-            t_assembly += t.elapsed();
-
-            let t = Instant::now();
-            self.cholesky.factorize(&self.matrix)?;
-            factorizations += 1;
-            t_factor += t.elapsed();
-
-            let t = Instant::now();
-            self.cholesky.solve_in_place(&mut rhs);
-            if rhs.iter().any(|d| !d.is_finite()) {
-                return Err(Error::Solver(format!(
-                    "iteration {}: the step is not finite (degenerate geometry?)",
-                    iteration + 1
-                )));
-            }
-            // Step control: halve while the step blows the energy up.
-            let mut halvings = 0;
-            let mut scale = 1.0;
-            let trial_energy = loop {
-                for ((t, &xi), &d) in trial.iter_mut().zip(x.iter()).zip(&rhs) {
-                    *t = xi + scale * d;
-                }
-                let trial_energy = self.evaluate(&trial, eps, eps0).0;
-                let acceptable = trial_energy <= energy * ENERGY_GROWTH_ALLOWED;
-                if !opts.step_control || halvings == 5 || acceptable {
-                    break trial_energy;
-                }
-                scale *= 0.5;
-                halvings += 1;
-            };
-            let step = rhs.iter().fold(0.0f64, |m, d| m.max((scale * d).abs()));
-            x.copy_from_slice(&trial);
-            // Trust the linearization more only after a step that paid off.
-            eps = if halvings == 0 && trial_energy <= energy {
-                (eps * EPS_DECAY).max(opts.eps_min)
-            } else {
-                (eps * EPS_GROWTH).min(eps0)
-            };
-            t_other += t.elapsed();
-
-            let info = IterationInfo {
-                iteration: iteration + 1,
-                max_residual,
-                energy,
-                eps,
-                step,
-                halvings,
-            };
-            progress(&info);
-            history.push(info);
-        }
-
-        // Final residuals at the result, linearization refreshed.
+        state.rhs.resize(n, 0.0);
+        state.trial.resize(n, 0.0);
+        let (eps, eps0) = (state.eps, state.eps0);
+        self.iteration = state.history.len();
         let t = Instant::now();
         for c in &mut self.families {
             c.refresh(x);
         }
-        let (_, max_residual) = self.evaluate(x, eps, eps0);
-        converged |= max_residual < opts.tolerance;
+        state.t_other += t.elapsed();
+
+        let t = Instant::now();
+        let (energy, max_residual) = self.evaluate(x, eps, eps0);
+        if max_residual < opts.tolerance {
+            state.converged = true;
+            state.t_assembly += t.elapsed();
+            return Ok(None);
+        }
+        let rhs = &mut state.rhs;
+        self.matrix.clear(rhs);
+        for f in 0..self.families.len() {
+            let w = self.weight(f, eps, eps0);
+            self.matrix
+                .add_family(f, w, &self.residuals[f], &self.jacobians[f], rhs);
+        }
+        self.matrix.add_diagonal(eps);
+        state.t_assembly += t.elapsed();
+
+        let t = Instant::now();
+        self.cholesky.factorize(&self.matrix)?;
+        state.factorizations += 1;
+        state.t_factor += t.elapsed();
+
+        let t = Instant::now();
+        self.cholesky.solve_in_place(rhs);
+        if rhs.iter().any(|d| !d.is_finite()) {
+            return Err(Error::Solver(format!(
+                "iteration {}: the step is not finite (degenerate geometry?)",
+                state.history.len() + 1
+            )));
+        }
+        // Step control: halve while the step blows the energy up.
+        let mut halvings = 0;
+        let mut scale = 1.0;
+        let trial_energy = loop {
+            for ((t, &xi), &d) in state.trial.iter_mut().zip(x.iter()).zip(rhs.iter()) {
+                *t = xi + scale * d;
+            }
+            let trial_energy = self.evaluate(&state.trial, eps, eps0).0;
+            let acceptable = trial_energy <= energy * ENERGY_GROWTH_ALLOWED;
+            if !opts.step_control || halvings == 5 || acceptable {
+                break trial_energy;
+            }
+            scale *= 0.5;
+            halvings += 1;
+        };
+        let step = rhs.iter().fold(0.0f64, |m, d| m.max((scale * d).abs()));
+        x.copy_from_slice(&state.trial);
+        // Trust the linearization more only after a step that paid off.
+        state.eps = if halvings == 0 && trial_energy <= energy {
+            (eps * EPS_DECAY).max(opts.eps_min)
+        } else {
+            (eps * EPS_GROWTH).min(eps0)
+        };
+        state.t_other += t.elapsed();
+
+        let info = IterationInfo {
+            iteration: state.history.len() + 1,
+            max_residual,
+            energy,
+            eps: state.eps,
+            step,
+            halvings,
+        };
+        state.history.push(info.clone());
+        Ok(Some(info))
+    }
+
+    /// Residuals at `x` (linearization refreshed) and the timings of `state`.
+    pub fn report(&mut self, x: &[f64], state: SolveState, opts: &SolverOptions) -> SolveReport {
+        let t = Instant::now();
+        for c in &mut self.families {
+            c.refresh(x);
+        }
+        let (_, max_residual) = self.evaluate(x, state.eps, state.eps0);
+        let converged = state.converged || max_residual < opts.tolerance;
         let families = self
             .families
             .iter()
@@ -268,21 +279,64 @@ impl<'a> GuidedProjection<'a> {
                 rms: (r.iter().map(|v| v * v).sum::<f64>() / r.len().max(1) as f64).sqrt(),
             })
             .collect();
-        t_other += t.elapsed();
+        let t_other = state.t_other + t.elapsed();
 
-        Ok(SolveReport {
-            iterations: history.len(),
+        SolveReport {
+            iterations: state.history.len(),
             converged,
-            unknowns: n,
+            unknowns: x.len(),
             matrix_nnz: self.matrix.nnz(),
             factor_nnz: self.cholesky.factor_nnz(),
-            factorizations,
+            factorizations: state.factorizations,
             seconds_symbolic: self.seconds_symbolic,
-            seconds_assembly: t_assembly.as_secs_f64(),
-            seconds_factorization: t_factor.as_secs_f64(),
+            seconds_assembly: state.t_assembly.as_secs_f64(),
+            seconds_factorization: state.t_factor.as_secs_f64(),
             seconds_other: t_other.as_secs_f64(),
             families,
-            history,
-        })
+            history: state.history,
+        }
+    }
+}
+
+/// Where a solve stands between steps: the regularization (and the one it started from, which
+/// fairness weights are scaled by), the steps taken and the time spent.
+pub struct SolveState {
+    pub eps: f64,
+    eps0: f64,
+    converged: bool,
+    history: Vec<IterationInfo>,
+    factorizations: usize,
+    t_assembly: Duration,
+    t_factor: Duration,
+    t_other: Duration,
+    rhs: Vec<f64>,
+    trial: Vec<f64>,
+}
+
+impl SolveState {
+    /// A solve starting at regularization `eps`.
+    pub fn new(eps: f64) -> SolveState {
+        SolveState {
+            eps,
+            eps0: eps,
+            converged: false,
+            history: Vec::new(),
+            factorizations: 0,
+            t_assembly: Duration::ZERO,
+            t_factor: Duration::ZERO,
+            t_other: Duration::ZERO,
+            rhs: Vec::new(),
+            trial: Vec::new(),
+        }
+    }
+
+    /// Steps taken so far.
+    pub fn iterations(&self) -> usize {
+        self.history.len()
+    }
+
+    /// Whether the last step found the conditions met.
+    pub fn converged(&self) -> bool {
+        self.converged
     }
 }

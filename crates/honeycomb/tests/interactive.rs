@@ -1,0 +1,234 @@
+//! The three editing modes of the paper's Fig. 10 on a live session, measured from the realized
+//! geometry after each edit.
+
+use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::interactive::{Edit, EditSession, SessionOptions, Workspace};
+use honeycomb::structure::Honeycomb;
+use honeycomb::Vec3;
+
+fn dome() -> Workspace {
+    let (base, surface) = lifted_hex_patch(Shape::Dome, 1500);
+    Workspace::new(&base, Some(&surface), None).unwrap()
+}
+
+fn angle_deg(a: Vec3, b: Vec3) -> f64 {
+    a.normalized()
+        .dot(b.normalized())
+        .clamp(-1.0, 1.0)
+        .acos()
+        .to_degrees()
+}
+
+/// The interior vertex closest to the centroid.
+fn middle(h: &Honeycomb) -> usize {
+    let c = h.base.centroid();
+    (0..h.base.vertices.len())
+        .min_by(|&a, &b| {
+            let d = |v: usize| (h.base.vertices[v] - c).norm();
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap()
+}
+
+fn largest_move(a: &Honeycomb, b: &Honeycomb) -> f64 {
+    a.base
+        .vertices
+        .iter()
+        .zip(&b.base.vertices)
+        .map(|(p, q)| (*p - *q).norm())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn first_solve_makes_a_honeycomb() {
+    let ws = dome();
+    let s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    assert!(!s.solving());
+    let m = s.view().measures;
+    assert!(m.omega_max_deg < 0.01, "omega {}", m.omega_max_deg);
+    assert!(m.delta_max < 1e-6, "delta {}", m.delta_max);
+    assert!(m.closeness_max < 0.05, "closeness {}", m.closeness_max);
+}
+
+#[test]
+fn turning_an_axis_spreads_and_stays_a_honeycomb() {
+    let ws = dome();
+    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    s.finish().unwrap();
+    let before = s.view().honeycomb;
+    let v = middle(&before);
+    let a = before.axes[v];
+    let tilt = a.any_orthogonal().normalized();
+    let direction = (a + tilt * 0.176).normalized(); // 10 degrees
+    s.apply(
+        Edit::TurnAxis {
+            vertex: v,
+            direction,
+            radius: 3,
+        },
+        Some(1),
+    )
+    .unwrap();
+    s.finish().unwrap();
+    let after = s.view();
+    let m = &after.measures;
+    assert!(m.omega_max_deg < 0.05, "omega {}", m.omega_max_deg);
+    // A compromise with the wish: walls planar to a ten-thousandth of an edge, not to 1e-9.
+    assert!(m.delta_max < 5e-4, "delta {}", m.delta_max);
+    // The axis turned most of the way (the axes are a wish at low weight) ...
+    let turned = angle_deg(after.honeycomb.axes[v], a);
+    let wanted = angle_deg(direction, a);
+    assert!(
+        turned > 0.5 * wanted && angle_deg(after.honeycomb.axes[v], direction) < 0.5 * wanted,
+        "turned {turned} of {wanted} degrees"
+    );
+    // ... its neighbours along, and far away the honeycomb barely moved.
+    let far = (0..before.base.vertices.len())
+        .max_by(|&x, &y| {
+            let d = |u: usize| (before.base.vertices[u] - before.base.vertices[v]).norm();
+            d(x).total_cmp(&d(y))
+        })
+        .unwrap();
+    assert!(angle_deg(after.honeycomb.axes[far], before.axes[far]) < 0.2 * turned);
+    assert!(s.can_undo());
+    assert!(s.undo());
+    let undone = s.view().honeycomb;
+    assert_eq!(largest_move(&undone, &before), 0.0);
+    assert!(s.redo());
+    assert_eq!(largest_move(&s.view().honeycomb, &after.honeycomb), 0.0);
+}
+
+#[test]
+fn moving_a_vertex_follows_the_pointer_on_s() {
+    let ws = dome();
+    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    s.finish().unwrap();
+    let before = s.view();
+    let v = middle(&before.honeycomb);
+    let edge = before.measures.mean_edge_length;
+    let target = before.honeycomb.base.vertices[v] + Vec3::new(0.4 * edge, 0.0, 0.0);
+    s.apply(Edit::MoveVertex { vertex: v, target }, Some(7))
+        .unwrap();
+    s.finish().unwrap();
+    let after = s.view();
+    let m = &after.measures;
+    assert!(m.omega_max_deg < 0.05, "omega {}", m.omega_max_deg);
+    assert!(m.closeness_max < 0.05, "closeness {}", m.closeness_max);
+    let moved = after.honeycomb.base.vertices[v] - before.honeycomb.base.vertices[v];
+    assert!(
+        moved.x > 0.2 * edge,
+        "moved {:.3} edges towards the target",
+        moved.x / edge
+    );
+}
+
+#[test]
+fn sliding_along_the_axis_keeps_the_walls() {
+    let ws = dome();
+    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    s.finish().unwrap();
+    let before = s.view();
+    let v = middle(&before.honeycomb);
+    let d = 0.1 * before.measures.mean_edge_length;
+    s.apply(
+        Edit::SlideVertex {
+            vertex: v,
+            distance: d,
+        },
+        None,
+    )
+    .unwrap();
+    assert!(!s.solving(), "a slide is not optimized");
+    let after = s.view();
+    let h = &after.honeycomb;
+    let moved = h.base.vertices[v] - before.honeycomb.base.vertices[v];
+    assert!((moved.norm() - d).abs() < 1e-12);
+    assert!(angle_deg(moved, before.honeycomb.axes[v]) < 1e-6);
+    // M' stays, every other vertex stays, the walls stay planar at 120 degrees.
+    let offset_moved = h
+        .offset
+        .vertices
+        .iter()
+        .zip(&before.honeycomb.offset.vertices)
+        .map(|(p, q)| (*p - *q).norm())
+        .fold(0.0, f64::max);
+    assert!(offset_moved < 1e-12, "M' moved by {offset_moved}");
+    assert!(after.measures.omega_max_deg < before.measures.omega_max_deg + 1e-6);
+    assert!(after.measures.delta_max < before.measures.delta_max + 1e-6);
+    // The slide can not carry v past M'.
+    s.apply(
+        Edit::SlideVertex {
+            vertex: v,
+            distance: 5.0 * before.measures.mean_edge_length,
+        },
+        None,
+    )
+    .unwrap();
+    let h = s.view().honeycomb;
+    assert!((h.offset.vertices[v] - h.base.vertices[v]).norm() > 0.0);
+    assert!(s.undo() && s.undo());
+    assert_eq!(largest_move(&s.view().honeycomb, &before.honeycomb), 0.0);
+}
+
+#[test]
+fn a_newer_edit_replaces_a_running_one() {
+    let ws = dome();
+    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    s.finish().unwrap();
+    let h = s.view().honeycomb;
+    let v = middle(&h);
+    let a = h.axes[v];
+    let t = a.any_orthogonal().normalized();
+    let first = (a + t * 0.3).normalized();
+    let second = (a - t * 0.3).normalized();
+    let turn = |direction| Edit::TurnAxis {
+        vertex: v,
+        direction,
+        radius: 2,
+    };
+    s.apply(turn(first), Some(3)).unwrap();
+    assert!(s.step().unwrap().is_some());
+    s.apply(turn(second), Some(3)).unwrap();
+    s.finish().unwrap();
+    let axis = s.view().honeycomb.axes[v];
+    assert!(angle_deg(axis, second) < angle_deg(axis, first));
+    // One gesture, one undo step.
+    assert!(s.undo());
+    assert!(!s.can_undo());
+}
+
+#[test]
+fn nonsense_edits_are_refused() {
+    let ws = dome();
+    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let n = s.num_vertices();
+    let bad = [
+        Edit::MoveVertex {
+            vertex: n,
+            target: Vec3::ZERO,
+        },
+        Edit::MoveVertex {
+            vertex: 0,
+            target: Vec3::new(f64::NAN, 0.0, 0.0),
+        },
+        Edit::TurnAxis {
+            vertex: 0,
+            direction: Vec3::ZERO,
+            radius: 1,
+        },
+        Edit::TurnAxis {
+            vertex: 0,
+            direction: Vec3::new(0.0, 0.0, 1.0),
+            radius: 10_000,
+        },
+        Edit::SlideVertex {
+            vertex: 0,
+            distance: f64::INFINITY,
+        },
+    ];
+    for e in bad {
+        let err = s.apply(e, None).unwrap_err().to_string();
+        assert!(!err.is_empty());
+    }
+    assert!(!s.can_undo(), "a refused edit leaves no undo step");
+}
