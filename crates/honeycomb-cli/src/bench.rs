@@ -39,6 +39,10 @@ pub struct Args {
     /// 100000 cells.
     #[arg(long, conflicts_with = "variants")]
     pub init: bool,
+    /// Instead of the sizes: the editor's latency (`honeycomb serve`), from an axis drag sent
+    /// over a WebSocket to the updated geometry received, on 1.5k- and 8.5k-vertex domes.
+    #[arg(long, conflicts_with_all = ["variants", "init"])]
+    pub serve: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -47,6 +51,9 @@ pub fn run(args: Args) -> Result<()> {
     }
     if args.init {
         return run_init(args.json);
+    }
+    if args.serve {
+        return crate::serve::bench(args.json);
     }
     if args.iterations == 0 || args.iterations > 1000 {
         return Err(Error::Parameter(format!(

@@ -9,6 +9,7 @@ mod init;
 mod optimize;
 mod progress;
 mod render;
+mod serve;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -40,6 +41,8 @@ enum Command {
     Render(render::Args),
     /// Spherical image of a structure directory: cell areas, Proposition 1 check.
     Analyse(analyse::Args),
+    /// The interactive editor in the browser: drag vertices and node axes, watch it re-solve.
+    Serve(serve::Args),
     /// Time the optimizer on generated hex meshes of growing size (Figure 16 columns).
     Bench(bench::Args),
 }
@@ -55,6 +58,7 @@ fn main() -> ExitCode {
         Command::Analyse(args) => analyse::run(args),
         Command::Edit(args) => edit::run(args),
         Command::Render(args) => render::run(args),
+        Command::Serve(args) => serve::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

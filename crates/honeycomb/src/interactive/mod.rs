@@ -78,7 +78,7 @@ impl Workspace {
     pub fn from_honeycomb(h: &Honeycomb, surface: Option<&PolyMesh>) -> Result<Workspace> {
         let mut ws = Workspace::new(&h.base, surface, Some(h.thickness))?;
         ws.depths = h.depths().collect();
-        if let Some(v) = ws.depths.iter().position(|d| !(*d > 0.0)) {
+        if let Some(v) = ws.depths.iter().position(|d| d.is_nan() || *d <= 0.0) {
             return Err(Error::Parameter(format!(
                 "vertex {v}: M' coincides with M (a depth of zero)"
             )));
@@ -101,9 +101,11 @@ pub struct SessionOptions {
     pub vertex_weight: f64,
     /// Weight of the target axes (mode iii): lower than the honeycomb conditions (paper: "given
     /// a lower weight than those expressing consistency and angles"). A spread turn is not a
-    /// honeycomb's axis field: the result is a least-squares compromise. On a 1.5k dome, a
-    /// 10-degree turn over 3 rings reaches 75% of the turn with omega_max 0.027 degrees; letting
-    /// the targets go after a few steps makes omega vanish but the axes drift back.
+    /// honeycomb's axis field: the result is a least-squares compromise whose omega grows with
+    /// the weight. On a 1.5k dome, turns over 3 rings (8 steps): at 0.02 a 10-degree wish
+    /// turns 6.5 degrees with omega_max 0.017, a 20-degree one 11.4 with 0.038 (at 0.1: 14.6
+    /// with 0.096). Letting the targets go after a few steps makes omega vanish, but then the
+    /// axes drift back most of the way.
     pub axis_weight: f64,
     /// Steps per edit at most; the first solve of a session may take `first_iterations`.
     pub iterations: usize,
@@ -128,7 +130,7 @@ impl Default for SessionOptions {
                 ..Weights::default()
             },
             vertex_weight: 1.0,
-            axis_weight: 0.1,
+            axis_weight: 0.02,
             iterations: 8,
             first_iterations: 20,
             tolerance: 1e-10,
@@ -187,6 +189,9 @@ pub struct EditSession<'a> {
     redo: Vec<Snapshot>,
     /// The gesture the last edit belonged to: one undo step per gesture.
     stroke: Option<u64>,
+    /// The node axes when the gesture began: every turn of a gesture is measured from them,
+    /// so that its messages do not pile their spread turns on top of each other.
+    stroke_axes: Option<Vec<Vec3>>,
 }
 
 impl<'a> EditSession<'a> {
@@ -234,6 +239,7 @@ impl<'a> EditSession<'a> {
             undo: Vec::new(),
             redo: Vec::new(),
             stroke: None,
+            stroke_axes: None,
             solver_options,
             options,
         })
@@ -253,6 +259,7 @@ impl<'a> EditSession<'a> {
         self.check(&edit)?;
         if stroke.is_none() || stroke != self.stroke {
             self.remember();
+            self.stroke_axes = None;
         }
         self.stroke = stroke;
         // Targets belong to one edit: a newer edit replaces the running one's.
@@ -279,14 +286,12 @@ impl<'a> EditSession<'a> {
                 direction,
                 radius,
             } => {
-                let current = self.axes_now();
-                let turned = spread_turn(
-                    &self.ws.conn,
-                    &current,
-                    vertex,
-                    direction.normalized(),
-                    radius,
-                );
+                if self.stroke_axes.is_none() {
+                    self.stroke_axes = Some(self.axes_now());
+                }
+                let start = self.stroke_axes.as_deref().unwrap_or_default();
+                let turned =
+                    spread_turn(&self.ws.conn, start, vertex, direction.normalized(), radius);
                 for (v, a) in turned {
                     self.axes.set_one(v, Some(a));
                 }
@@ -410,6 +415,7 @@ impl<'a> EditSession<'a> {
         self.depths = s.depths;
         self.cancel();
         self.stroke = None;
+        self.stroke_axes = None;
     }
 
     fn remember(&mut self) {

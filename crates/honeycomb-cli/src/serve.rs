@@ -1,0 +1,130 @@
+//! `honeycomb serve`: the interactive editor in the browser (a thin front over honeycomb-serve).
+
+use honeycomb::generate::Shape;
+use honeycomb::{Error, Result};
+use honeycomb_serve::{start, ServeOptions, Source};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// A structure directory (from optimize, demo, pipeline or a save) or a design surface
+    /// (.obj, .off, .ply; a hex base mesh is made on it first). Without it: the demo dome.
+    pub input: Option<PathBuf>,
+    /// Port on 127.0.0.1 (0: any free port).
+    #[arg(long, default_value_t = 8080)]
+    pub port: u16,
+    /// Listen on all interfaces instead of 127.0.0.1 only (the editor has no login).
+    #[arg(long)]
+    pub public: bool,
+    /// Folder for the page's saves (one structure directory per name).
+    #[arg(long, default_value = "honeycomb-saves")]
+    pub saves: PathBuf,
+    /// Cells of the base mesh made on a design surface.
+    #[arg(long, default_value_t = 750)]
+    pub cells: usize,
+    /// Built-in surface of the demo (no input): saddle, dome, cylinder or roof.
+    #[arg(long, default_value = "dome")]
+    pub shape: Shape,
+    /// Vertices of the demo's base mesh (no input).
+    #[arg(long, default_value_t = 1500)]
+    pub vertices: usize,
+    /// Distance of M' from M in model units (default 0.3 mean edge lengths).
+    #[arg(long, allow_negative_numbers = true)]
+    pub thickness: Option<f64>,
+    /// Print only errors.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    if !(50..=200_000).contains(&args.vertices) {
+        return Err(Error::Parameter(format!(
+            "--vertices {}: expected 50 to 200000 (an editor is for live work)",
+            args.vertices
+        )));
+    }
+    let source = match &args.input {
+        None => Source::Demo {
+            shape: args.shape,
+            vertices: args.vertices,
+        },
+        Some(path) if !path.exists() => {
+            return Err(Error::Parameter(format!(
+                "{}: no such file or directory",
+                path.display()
+            )))
+        }
+        Some(path) => Source::from_path(path, args.cells),
+    };
+    let options = ServeOptions {
+        host: if args.public {
+            [0, 0, 0, 0].into()
+        } else {
+            [127, 0, 0, 1].into()
+        },
+        port: args.port,
+        save_root: args.saves.clone(),
+        thickness: args.thickness,
+        ..ServeOptions::default()
+    };
+    if !args.quiet {
+        eprintln!("solving {} ...", source.label());
+    }
+    let server = start(&source, options)?;
+    // The address on stdout, alone on its line: scripts and the tests read it from there.
+    println!("{}", server.url());
+    if !args.quiet {
+        eprintln!(
+            "honeycomb editor at {} (saves go to {}); Ctrl-C stops it",
+            server.url(),
+            args.saves.display()
+        );
+    }
+    server.wait();
+    Ok(())
+}
+
+/// `bench --serve`: drag-to-update latency through a real WebSocket, at 1.5k and 8k vertices.
+pub fn bench(json: bool) -> Result<()> {
+    if !json {
+        println!(
+            "{:>8} {:>6} {:>12} {:>10} {:>10} {:>8} {:>9} {:>9} {:>11}",
+            "|V|",
+            "drags",
+            "first med",
+            "first p90",
+            "done med",
+            "steps",
+            "step med",
+            "slide med",
+            "omega_max"
+        );
+    }
+    for vertices in [1500, 8500] {
+        let source = Source::Demo {
+            shape: Shape::Dome,
+            vertices,
+        };
+        let l = honeycomb_serve::latency::measure(&source, 30)?;
+        if json {
+            println!(
+                "{}",
+                serde_json::to_string(&l).map_err(|e| Error::Parameter(e.to_string()))?
+            );
+        } else {
+            println!(
+                "{:>8} {:>6} {:>9.1} ms {:>7.1} ms {:>7.1} ms {:>8.1} {:>6.1} ms {:>6.1} ms {:>11.2e}",
+                l.vertices,
+                l.drags,
+                l.first_update_median_ms,
+                l.first_update_p90_ms,
+                l.done_median_ms,
+                l.steps_per_drag,
+                l.step_median_ms,
+                l.slide_median_ms,
+                l.omega_max_deg
+            );
+        }
+    }
+    Ok(())
+}

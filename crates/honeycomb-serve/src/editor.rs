@@ -1,0 +1,269 @@
+//! The editor thread: owns the workspace and its `EditSession`, reads commands between solver
+//! steps and broadcasts every iterate. Commands that arrive while a solve runs are all read
+//! before the next step, so a newer drag replaces a stale one at once.
+
+use crate::protocol::{error_message, mesh_message, state_message, ClientMessage, UpdateInfo};
+use crate::source::{save_dir, Source};
+use honeycomb::export::write_structure;
+use honeycomb::interactive::{EditSession, SessionOptions, Workspace};
+use honeycomb::mesh::{write_mesh, PolyMesh};
+use honeycomb::{Error, Result};
+use serde_json::{json, Value};
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, TryRecvError};
+use std::sync::Arc;
+use std::time::Instant;
+use tokio::sync::{broadcast, mpsc};
+
+pub enum Command {
+    /// A parsed message from a page, with the moment it was read.
+    Message(ClientMessage, Instant),
+    /// A new page: send it the mesh and the current state.
+    Hello(mpsc::UnboundedSender<Arc<str>>),
+}
+
+pub struct Editor {
+    pub commands: Receiver<Command>,
+    pub out: broadcast::Sender<Arc<str>>,
+    pub save_root: PathBuf,
+    pub options: SessionOptions,
+    pub thickness: Option<f64>,
+}
+
+/// How an editing run ended.
+enum Next {
+    Load(Box<Workspace>, String),
+    Stop,
+}
+
+struct Progress {
+    seq: u64,
+    stroke: Option<u64>,
+    iteration: usize,
+    edit_start: Instant,
+    step_ms: f64,
+}
+
+impl Progress {
+    fn new() -> Progress {
+        Progress {
+            seq: 0,
+            stroke: None,
+            iteration: 0,
+            edit_start: Instant::now(),
+            step_ms: 0.0,
+        }
+    }
+}
+
+impl Editor {
+    /// Runs until every sender of commands is gone. `ready` hears whether the first session
+    /// could be set up.
+    pub fn run(self, first: Workspace, label: String, ready: std::sync::mpsc::Sender<Result<()>>) {
+        let mut ready = Some(ready);
+        let (mut ws, mut label) = (first, label);
+        loop {
+            let session = EditSession::new(&ws, self.options.clone());
+            let mut session = match (session, ready.take()) {
+                (Ok(s), r) => {
+                    if let Some(r) = r {
+                        let _ = r.send(Ok(()));
+                    }
+                    s
+                }
+                (Err(e), Some(r)) => {
+                    let _ = r.send(Err(e));
+                    return;
+                }
+                (Err(e), None) => {
+                    // A load that cannot be solved: say so; nothing else to go back to here.
+                    self.broadcast(error_message(&format!("load failed: {e}")));
+                    return;
+                }
+            };
+            self.broadcast(mesh_message(
+                &session.view().honeycomb,
+                &ws.model_surface,
+                &label,
+            ));
+            self.broadcast(self.state(&session, &Progress::new()));
+            match self.edit(&mut session, &ws, &label) {
+                Next::Load(next, next_label) => {
+                    drop(session);
+                    ws = *next;
+                    label = next_label;
+                }
+                Next::Stop => return,
+            }
+        }
+    }
+
+    fn broadcast(&self, message: Value) {
+        // No page connected is fine: the state is kept for the next one.
+        let _ = self.out.send(Arc::from(message.to_string()));
+    }
+
+    fn state(&self, session: &EditSession, p: &Progress) -> Value {
+        let info = UpdateInfo {
+            seq: p.seq,
+            stroke: p.stroke,
+            iteration: p.iteration,
+            done: !session.solving(),
+            step_ms: p.step_ms,
+            edit_ms: p.edit_start.elapsed().as_secs_f64() * 1e3,
+            can_undo: session.can_undo(),
+            can_redo: session.can_redo(),
+        };
+        state_message(&session.view(), &info)
+    }
+
+    fn edit(&self, session: &mut EditSession, ws: &Workspace, label: &str) -> Next {
+        let mut p = Progress::new();
+        loop {
+            let command = if session.solving() {
+                match self.commands.try_recv() {
+                    Ok(c) => Some(c),
+                    Err(TryRecvError::Empty) => None,
+                    Err(TryRecvError::Disconnected) => return Next::Stop,
+                }
+            } else {
+                match self.commands.recv() {
+                    Ok(c) => Some(c),
+                    Err(_) => return Next::Stop,
+                }
+            };
+            if let Some(command) = command {
+                match command {
+                    Command::Hello(reply) => {
+                        let mesh =
+                            mesh_message(&session.view().honeycomb, &ws.model_surface, label);
+                        let _ = reply.send(Arc::from(mesh.to_string()));
+                        let _ = reply.send(Arc::from(self.state(session, &p).to_string()));
+                    }
+                    Command::Message(message, at) => {
+                        if let Some(next) = self.handle(session, ws, message, at, &mut p) {
+                            return next;
+                        }
+                    }
+                }
+                continue;
+            }
+            // No command waiting: one step of the running solve.
+            let t = Instant::now();
+            let step = session.step();
+            p.step_ms = t.elapsed().as_secs_f64() * 1e3;
+            match step {
+                Ok(Some(_)) => p.iteration += 1,
+                Ok(None) => {}
+                Err(e) => {
+                    session.cancel();
+                    self.broadcast(error_message(&format!("the solve stopped: {e}")));
+                }
+            }
+            p.seq += 1;
+            self.broadcast(self.state(session, &p));
+        }
+    }
+
+    /// Handles one message; `Some` ends this session (a load).
+    fn handle(
+        &self,
+        session: &mut EditSession,
+        ws: &Workspace,
+        message: ClientMessage,
+        at: Instant,
+        p: &mut Progress,
+    ) -> Option<Next> {
+        let instant = |p: &mut Progress, stroke| {
+            p.stroke = stroke;
+            p.iteration = 0;
+            p.edit_start = at;
+            p.step_ms = 0.0;
+        };
+        if let Some((edit, stroke)) = message.edit() {
+            match session.apply(edit, stroke) {
+                Ok(()) => {
+                    instant(p, stroke);
+                    if !session.solving() {
+                        // A slide: nothing to solve, show it now.
+                        p.seq += 1;
+                        self.broadcast(self.state(session, p));
+                    }
+                }
+                Err(e) => self.broadcast(error_message(&e.to_string())),
+            }
+            return None;
+        }
+        match message {
+            ClientMessage::Undo | ClientMessage::Redo | ClientMessage::Cancel => {
+                let changed = match message {
+                    ClientMessage::Undo => session.undo(),
+                    ClientMessage::Redo => session.redo(),
+                    _ => {
+                        session.cancel();
+                        true
+                    }
+                };
+                if !changed {
+                    self.broadcast(error_message("nothing to undo or redo"));
+                }
+                instant(p, None);
+                p.seq += 1;
+                self.broadcast(self.state(session, p));
+            }
+            ClientMessage::Save { name } => match self.save(session, ws, &name) {
+                Ok(dir) => self.broadcast(json!({
+                    "type": "saved", "name": name, "dir": dir.display().to_string()
+                })),
+                Err(e) => self.broadcast(error_message(&format!("save failed: {e}"))),
+            },
+            ClientMessage::Load { name } => {
+                let loaded = save_dir(&self.save_root, &name)
+                    .and_then(|dir| Source::Structure(dir).workspace(self.thickness));
+                match loaded {
+                    Ok(next) => return Some(Next::Load(Box::new(next), name)),
+                    Err(e) => self.broadcast(error_message(&format!("load failed: {e}"))),
+                }
+            }
+            _ => unreachable!("edits are handled above"),
+        }
+        None
+    }
+
+    /// Writes the current structure, its surface and its measures into `root/name`: first to a
+    /// temporary folder beside it, then renamed, so a reader never sees half a save.
+    fn save(&self, session: &EditSession, ws: &Workspace, name: &str) -> Result<PathBuf> {
+        let dir = save_dir(&self.save_root, name)?;
+        let io = |path: &Path, source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        std::fs::create_dir_all(&self.save_root).map_err(|e| io(&self.save_root, e))?;
+        let tmp = self
+            .save_root
+            .join(format!(".{name}.saving-{}", std::process::id()));
+        if tmp.exists() {
+            std::fs::remove_dir_all(&tmp).map_err(|e| io(&tmp, e))?;
+        }
+        std::fs::create_dir_all(&tmp).map_err(|e| io(&tmp, e))?;
+        let view = session.view();
+        let s = &ws.model_surface;
+        let surface = PolyMesh::new(
+            s.vertices().to_vec(),
+            s.triangles().iter().map(|t| t.to_vec()).collect(),
+        );
+        write_mesh(&tmp.join("surface.obj"), &surface)?;
+        write_structure(&tmp, &view.honeycomb, &json!({ "measures": view.measures }))?;
+        if dir.exists() {
+            let old = self
+                .save_root
+                .join(format!(".{name}.old-{}", std::process::id()));
+            std::fs::rename(&dir, &old).map_err(|e| io(&dir, e))?;
+            std::fs::rename(&tmp, &dir).map_err(|e| io(&dir, e))?;
+            let _ = std::fs::remove_dir_all(&old);
+        } else {
+            std::fs::rename(&tmp, &dir).map_err(|e| io(&dir, e))?;
+        }
+        Ok(dir)
+    }
+}

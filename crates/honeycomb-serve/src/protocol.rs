@@ -1,0 +1,187 @@
+//! The WebSocket messages between the page and the editor, as JSON text frames.
+
+use honeycomb::interactive::{Edit, View, MAX_RADIUS};
+use honeycomb::structure::Honeycomb;
+use honeycomb::Vec3;
+use serde::Deserialize;
+use serde_json::{json, Value};
+
+/// Largest message the server reads (a drag is under 200 bytes).
+pub const MAX_MESSAGE_BYTES: usize = 64 * 1024;
+
+/// A message from the page. `stroke` numbers a drag gesture: its messages share one undo step,
+/// and a newer one replaces an older one that is still being solved.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ClientMessage {
+    /// Mode (i): move a base-mesh vertex (towards `target`, kept on S) and re-optimize.
+    DragVertex {
+        vertex: usize,
+        target: [f64; 3],
+        stroke: Option<u64>,
+    },
+    /// Mode (ii): slide a vertex by `distance` along its node axis; no optimization.
+    Slide {
+        vertex: usize,
+        distance: f64,
+        stroke: Option<u64>,
+    },
+    /// Mode (iii): turn the node axis of `vertex` to `direction`, spread over `radius` rings.
+    DragAxis {
+        vertex: usize,
+        direction: [f64; 3],
+        radius: usize,
+        stroke: Option<u64>,
+    },
+    Undo,
+    Redo,
+    /// Stop the running solve where it stands.
+    Cancel,
+    /// Write the current structure to the save folder under `name`.
+    Save {
+        name: String,
+    },
+    /// Go on editing a structure saved under `name`.
+    Load {
+        name: String,
+    },
+}
+
+impl ClientMessage {
+    pub fn parse(text: &str) -> Result<ClientMessage, String> {
+        if text.len() > MAX_MESSAGE_BYTES {
+            return Err(format!(
+                "message of {} bytes: the limit is {MAX_MESSAGE_BYTES}",
+                text.len()
+            ));
+        }
+        serde_json::from_str(text).map_err(|e| format!("malformed message: {e}"))
+    }
+
+    /// The edit and its stroke, for the three editing modes.
+    pub fn edit(&self) -> Option<(Edit, Option<u64>)> {
+        let v3 = |a: &[f64; 3]| Vec3::new(a[0], a[1], a[2]);
+        match self {
+            ClientMessage::DragVertex {
+                vertex,
+                target,
+                stroke,
+            } => Some((
+                Edit::MoveVertex {
+                    vertex: *vertex,
+                    target: v3(target),
+                },
+                *stroke,
+            )),
+            ClientMessage::Slide {
+                vertex,
+                distance,
+                stroke,
+            } => Some((
+                Edit::SlideVertex {
+                    vertex: *vertex,
+                    distance: *distance,
+                },
+                *stroke,
+            )),
+            ClientMessage::DragAxis {
+                vertex,
+                direction,
+                radius,
+                stroke,
+            } => Some((
+                Edit::TurnAxis {
+                    vertex: *vertex,
+                    direction: v3(direction),
+                    radius: (*radius).min(MAX_RADIUS + 1),
+                },
+                *stroke,
+            )),
+            _ => None,
+        }
+    }
+}
+
+/// A save name: a plain folder name, nothing that could climb out of the save folder.
+pub fn check_name(name: &str) -> Result<&str, String> {
+    let ok = !name.is_empty()
+        && name.len() <= 64
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+    if ok {
+        Ok(name)
+    } else {
+        Err(format!(
+            "save name {name:?}: use 1 to 64 letters, digits, '-' or '_'"
+        ))
+    }
+}
+
+fn flat(points: &[Vec3]) -> Vec<f32> {
+    points
+        .iter()
+        .flat_map(|p| [p.x as f32, p.y as f32, p.z as f32])
+        .collect()
+}
+
+/// The topology and the design surface, sent once per connection and after a load.
+pub fn mesh_message(h: &Honeycomb, surface: &honeycomb::surface::Surface, source: &str) -> Value {
+    let triangles: Vec<usize> = surface.triangles().iter().flatten().copied().collect();
+    json!({
+        "type": "mesh",
+        "source": source,
+        "vertices": h.base.vertices.len(),
+        "faces": h.base.faces,
+        "edges": h.edges,
+        "surface": { "vertices": flat(surface.vertices()), "triangles": triangles },
+    })
+}
+
+/// Where an update stands in its edit.
+pub struct UpdateInfo {
+    pub seq: u64,
+    pub stroke: Option<u64>,
+    pub iteration: usize,
+    /// The edit's solve has ended (converged or out of steps), or there was none.
+    pub done: bool,
+    /// Milliseconds of the last solver step.
+    pub step_ms: f64,
+    /// Milliseconds since the edit's message was read.
+    pub edit_ms: f64,
+    pub can_undo: bool,
+    pub can_redo: bool,
+}
+
+/// The geometry and measures after a step (or an instant edit).
+pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
+    let (h, m) = (&view.honeycomb, &view.measures);
+    json!({
+        "type": "state",
+        "seq": info.seq,
+        "stroke": info.stroke,
+        "iteration": info.iteration,
+        "done": info.done,
+        "step_ms": info.step_ms,
+        "edit_ms": info.edit_ms,
+        "can_undo": info.can_undo,
+        "can_redo": info.can_redo,
+        "base": flat(&h.base.vertices),
+        "offset": flat(&h.offset.vertices),
+        "omega": m.omega_per_node.iter().map(|&x| x as f32).collect::<Vec<_>>(),
+        "delta": m.delta_per_wall.iter().map(|&x| x as f32).collect::<Vec<_>>(),
+        "measures": {
+            "omega_max_deg": m.omega_max_deg,
+            "omega_avg_deg": m.omega_avg_deg,
+            "delta_max": m.delta_max,
+            "delta_avg": m.delta_avg,
+            "closeness_max": m.closeness_max,
+            "closeness_avg": m.closeness_avg,
+            "mean_edge_length": m.mean_edge_length,
+        },
+    })
+}
+
+pub fn error_message(message: &str) -> Value {
+    json!({ "type": "error", "message": message })
+}

@@ -1,0 +1,82 @@
+//! What the editor starts from: a built-in demo, a saved structure directory, or a design
+//! surface that gets a hexagonal base mesh first.
+
+use honeycomb::export::read_structure;
+use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::init::{init, CellSize, InitOptions};
+use honeycomb::interactive::Workspace;
+use honeycomb::mesh::{read_mesh, PolyMesh};
+use honeycomb::{Error, Result};
+use std::path::{Path, PathBuf};
+
+#[derive(Clone, Debug)]
+pub enum Source {
+    /// A hex mesh lifted onto a built-in surface, with about `vertices` vertices.
+    Demo { shape: Shape, vertices: usize },
+    /// A structure directory (`structure.json`, and `surface.obj` when it has one).
+    Structure(PathBuf),
+    /// A design surface: `init` puts about `cells` hexagons on it.
+    Surface { path: PathBuf, cells: usize },
+}
+
+impl Source {
+    /// A path names a structure directory or a surface file.
+    pub fn from_path(path: &Path, cells: usize) -> Source {
+        if path.is_dir() {
+            Source::Structure(path.to_path_buf())
+        } else {
+            Source::Surface {
+                path: path.to_path_buf(),
+                cells,
+            }
+        }
+    }
+
+    pub fn label(&self) -> String {
+        match self {
+            Source::Demo { shape, vertices } => {
+                format!(
+                    "demo {} ({vertices} vertices)",
+                    format!("{shape:?}").to_lowercase()
+                )
+            }
+            Source::Structure(dir) => dir.display().to_string(),
+            Source::Surface { path, cells } => format!("{} ({cells} cells)", path.display()),
+        }
+    }
+
+    pub fn workspace(&self, thickness: Option<f64>) -> Result<Workspace> {
+        match self {
+            Source::Demo { shape, vertices } => {
+                let (base, surface) = lifted_hex_patch(*shape, *vertices);
+                Workspace::new(&base, Some(&surface), thickness)
+            }
+            Source::Structure(dir) => {
+                let (h, _) = read_structure(dir)?;
+                let surface = structure_surface(dir)?;
+                Workspace::from_honeycomb(&h, surface.as_ref())
+            }
+            Source::Surface { path, cells } => {
+                let surface = read_mesh(path)?.mesh;
+                let base = init(&surface, &InitOptions::new(CellSize::Cells(*cells)))?.base;
+                Workspace::new(&base, Some(&surface), thickness)
+            }
+        }
+    }
+}
+
+/// `DIR/surface.obj` when the directory has one (written by `demo`, `pipeline` and the
+/// editor's save).
+fn structure_surface(dir: &Path) -> Result<Option<PolyMesh>> {
+    let path = dir.join("surface.obj");
+    if !path.exists() {
+        return Ok(None);
+    }
+    Ok(Some(read_mesh(&path)?.mesh))
+}
+
+/// The folder a save `name` goes to: always directly inside `root`.
+pub fn save_dir(root: &Path, name: &str) -> Result<PathBuf> {
+    crate::protocol::check_name(name).map_err(Error::Parameter)?;
+    Ok(root.join(name))
+}

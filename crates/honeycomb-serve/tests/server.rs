@@ -1,0 +1,244 @@
+//! The editor server over real sockets: what it serves, what it refuses, how it streams.
+
+use honeycomb::generate::Shape;
+use honeycomb_serve::latency::Client;
+use honeycomb_serve::{start, ServeOptions, Server, Source};
+use serde_json::{json, Value};
+use std::io::{Read, Write};
+use std::net::TcpStream;
+use std::path::PathBuf;
+
+fn server(tag: &str) -> (Server, PathBuf) {
+    let saves = std::env::temp_dir().join(format!("honeycomb-serve-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&saves);
+    let source = Source::Demo {
+        shape: Shape::Dome,
+        vertices: 400,
+    };
+    let options = ServeOptions {
+        port: 0,
+        save_root: saves.clone(),
+        ..ServeOptions::default()
+    };
+    (start(&source, options).unwrap(), saves)
+}
+
+/// A raw HTTP/1.1 GET with the path exactly as given (no client-side normalization).
+fn get(server: &Server, path: &str) -> (u16, Vec<u8>) {
+    let mut s = TcpStream::connect(server.addr).unwrap();
+    write!(
+        s,
+        "GET {path} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let mut response = Vec::new();
+    s.read_to_end(&mut response).unwrap();
+    let text = String::from_utf8_lossy(&response);
+    let status = text
+        .split_whitespace()
+        .nth(1)
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(0);
+    let body = match response.windows(4).position(|w| w == b"\r\n\r\n") {
+        Some(i) => response[i + 4..].to_vec(),
+        None => Vec::new(),
+    };
+    (status, body)
+}
+
+fn connect(server: &Server) -> (Client, Value, Value) {
+    let mut c = Client::connect(&format!("ws://{}/ws", server.addr)).unwrap();
+    let mesh = c.until("mesh", |_| true).unwrap();
+    let state = c.until("state", |_| true).unwrap();
+    (c, mesh, state)
+}
+
+#[test]
+fn serves_its_assets_and_nothing_else() {
+    let (server, _) = server("assets");
+    let (status, body) = get(&server, "/");
+    assert_eq!(status, 200);
+    assert!(String::from_utf8_lossy(&body).contains("importmap"));
+    for path in [
+        "/app.js",
+        "/style.css",
+        "/vendor/three.module.js",
+        "/vendor/OrbitControls.js",
+    ] {
+        let (status, body) = get(&server, path);
+        assert_eq!(status, 200, "{path}");
+        assert!(body.len() > 100, "{path}");
+    }
+    for path in [
+        "/../Cargo.toml",
+        "/vendor/../../Cargo.toml",
+        "/%2e%2e/%2e%2e/Cargo.toml",
+        "/..%2f..%2fCargo.toml",
+        "/etc/passwd",
+        "//etc/passwd",
+        "/node_modules/three/package.json",
+        "/web/app.js",
+        "/app.js/../../README.md",
+    ] {
+        let (status, body) = get(&server, path);
+        assert_eq!(status, 404, "{path}");
+        let body = String::from_utf8_lossy(&body);
+        assert!(
+            !body.contains("[package]") && !body.contains("root:"),
+            "{path}"
+        );
+    }
+    server.stop();
+}
+
+#[test]
+fn malformed_messages_get_an_error_and_change_nothing() {
+    let (server, _) = server("malformed");
+    let (mut c, mesh, first) = connect(&server);
+    let nv = mesh["vertices"].as_u64().unwrap();
+    let bad = [
+        "not json".to_string(),
+        "{}".to_string(),
+        json!({"type": "explode"}).to_string(),
+        json!({"type": "drag_axis", "vertex": "seven", "direction": [0, 0, 1], "radius": 2})
+            .to_string(),
+        json!({"type": "drag_axis", "vertex": 1, "direction": [0, 0], "radius": 2}).to_string(),
+        json!({"type": "drag_vertex", "vertex": 1, "target": [0, 0, 1], "extra": true}).to_string(),
+        json!({"type": "slide", "vertex": -1, "distance": 0.1}).to_string(),
+        format!("{{\"type\":\"slide\",\"vertex\":1,\"distance\":1e999}}"),
+        json!({"type": "save", "name": "x".repeat(70 * 1024)}).to_string(),
+    ];
+    for text in &bad {
+        c.send_text(text).unwrap();
+        let e = c.until("error", |_| true).unwrap();
+        assert!(!e["message"].as_str().unwrap().is_empty(), "{text:.80}");
+    }
+    // Well-formed but impossible: the editor says why.
+    let impossible = [
+        json!({"type": "drag_axis", "vertex": nv, "direction": [0, 0, 1], "radius": 2}),
+        json!({"type": "drag_axis", "vertex": 0, "direction": [0, 0, 0], "radius": 2}),
+        json!({"type": "drag_axis", "vertex": 0, "direction": [0, 0, 1], "radius": 100000}),
+        json!({"type": "save", "name": "../outside"}),
+        json!({"type": "load", "name": "never-saved"}),
+    ];
+    for m in &impossible {
+        c.send(m).unwrap();
+        let e = c.until("error", |_| true).unwrap();
+        assert!(!e["message"].as_str().unwrap().is_empty(), "{m}");
+    }
+    // A binary frame.
+    c.send_text("").ok();
+    c.until("error", |_| true).unwrap();
+    // The last good state is kept: a cancel shows the geometry the page started with.
+    c.send(&json!({"type": "cancel"})).unwrap();
+    let now = c.until("state", |_| true).unwrap();
+    assert!(
+        now["base"] == first["base"] && now["offset"] == first["offset"],
+        "state changed"
+    );
+    assert!(!std::path::Path::new("../outside").exists());
+    server.stop();
+}
+
+#[test]
+fn a_drag_streams_every_step_and_a_newer_one_wins() {
+    let (server, saves) = server("drag");
+    let (mut c, mesh, first) = connect(&server);
+    let nv = mesh["vertices"].as_u64().unwrap() as usize;
+    let p = |s: &Value, key: &str, v: usize| {
+        let f = |k: usize| s[key][3 * v + k].as_f64().unwrap();
+        [f(0), f(1), f(2)]
+    };
+    let v = nv / 2;
+    let (b, o) = (p(&first, "base", v), p(&first, "offset", v));
+    let axis = [o[0] - b[0], o[1] - b[1], o[2] - b[2]];
+    let turned = |s: f64| [axis[0] + s * axis[2], axis[1], axis[2] - s * axis[0]];
+    // Two gestures back to back: the second replaces the first while it solves.
+    c.send(&json!({"type": "drag_axis", "vertex": v, "direction": turned(0.1), "radius": 2, "stroke": 1}))
+        .unwrap();
+    c.send(&json!({"type": "drag_axis", "vertex": v, "direction": turned(-0.1), "radius": 2, "stroke": 2}))
+        .unwrap();
+    let mut steps = Vec::new();
+    let last = loop {
+        let s = c.until("state", |_| true).unwrap();
+        if s["stroke"] == 2 {
+            steps.push(s["iteration"].as_u64().unwrap());
+            if s["done"] == true {
+                break s;
+            }
+        } else {
+            // Once the newer gesture is read, the older one gets no more steps.
+            assert!(
+                steps.is_empty(),
+                "a step of the replaced gesture came after the newer one"
+            );
+        }
+    };
+    assert!(
+        steps.len() >= 2 && steps.windows(2).all(|w| w[1] == w[0] + 1),
+        "{steps:?}"
+    );
+    let omega = last["measures"]["omega_max_deg"].as_f64().unwrap();
+    assert!(omega < 0.05, "omega {omega}");
+    assert!(
+        last["offset"] != first["offset"],
+        "the drag changed nothing"
+    );
+    assert_eq!(last["can_undo"], true);
+
+    // Undo, one step per gesture: back to the start.
+    c.send(&json!({"type": "undo"})).unwrap();
+    c.until("state", |_| true).unwrap();
+    c.send(&json!({"type": "undo"})).unwrap();
+    let undone = c.until("state", |_| true).unwrap();
+    assert!(
+        undone["base"] == first["base"],
+        "two undos did not restore the start"
+    );
+    assert_eq!(undone["can_undo"], false);
+    assert_eq!(undone["can_redo"], true);
+
+    // Save, then load it back: the same geometry, written as a structure directory.
+    c.send(&json!({"type": "redo"})).unwrap();
+    c.until("state", |_| true).unwrap();
+    c.send(&json!({"type": "redo"})).unwrap();
+    let redone = c.until("state", |_| true).unwrap();
+    assert!(
+        redone["base"] == last["base"],
+        "redo did not restore the drag"
+    );
+    c.send(&json!({"type": "save", "name": "after-drag"}))
+        .unwrap();
+    let saved = c.until("saved", |_| true).unwrap();
+    let dir = PathBuf::from(saved["dir"].as_str().unwrap());
+    assert_eq!(dir, saves.join("after-drag"));
+    for f in [
+        "base.obj",
+        "offset.obj",
+        "walls.obj",
+        "structure.json",
+        "report.json",
+        "surface.obj",
+    ] {
+        assert!(dir.join(f).exists(), "{f} missing");
+    }
+    c.send(&json!({"type": "load", "name": "after-drag"}))
+        .unwrap();
+    let mesh2 = c.until("mesh", |_| true).unwrap();
+    assert_eq!(mesh2["vertices"], mesh["vertices"]);
+    let loaded = c.until("state", |_| true).unwrap();
+    let max_diff = (0..3 * nv)
+        .map(|i| (loaded["base"][i].as_f64().unwrap() - redone["base"][i].as_f64().unwrap()).abs())
+        .fold(0.0, f64::max);
+    // A load solves once more: the saved compromise with the wished axes (omega a few
+    // hundredths of a degree) settles into an exact honeycomb close by.
+    let edge = redone["measures"]["mean_edge_length"].as_f64().unwrap();
+    assert!(
+        max_diff < 0.05 * edge,
+        "loaded geometry differs by {max_diff}"
+    );
+    let omega = loaded["measures"]["omega_max_deg"].as_f64().unwrap();
+    assert!(omega < 0.01, "loaded omega {omega}");
+    server.stop();
+    let _ = std::fs::remove_dir_all(&saves);
+}

@@ -1,0 +1,74 @@
+// End-to-end: the editor page in headless Chromium. Loads the served demo honeycomb, drags a
+// node axis with the mouse, waits for the re-solve, checks the panel and writes a screenshot.
+// Usage: node e2e/drag-axis.mjs URL SCREENSHOT.png   (CHROMIUM: the browser, default
+// /usr/bin/chromium). Prints one JSON line of findings; exits non-zero on a failed check.
+import { chromium } from 'playwright-core';
+
+const [url, screenshot] = process.argv.slice(2);
+const fail = (message) => { console.error(`e2e: ${message}`); process.exit(1); };
+if (!url || !screenshot) fail('usage: node e2e/drag-axis.mjs URL SCREENSHOT.png');
+
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  const logs = [];
+  page.on('console', (m) => logs.push(`${m.type()}: ${m.text()}`));
+  page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
+  await page.goto(url);
+  await page.waitForFunction(() => window.honeycomb && window.honeycomb.lastState, null, { timeout: 30000 })
+    .catch(() => fail(`the page showed no honeycomb: ${logs.join(' | ')}`));
+  // Let the camera frame the model.
+  await page.waitForTimeout(300);
+  const before = await page.evaluate(() => ({
+    states: window.honeycomb.states,
+    offset: Array.from(window.honeycomb.lastState.offset),
+    omega: Number(document.getElementById('omega_max').textContent),
+  }));
+
+  // A malformed message: the page shows the server's error, the model stays.
+  await page.evaluate(() => window.honeycomb.send({ type: 'drag_axis', vertex: 'seven' }));
+  await page.waitForFunction(() => window.honeycomb.errors.length > 0, null, { timeout: 10000 })
+    .catch(() => fail('no error shown for a malformed message'));
+  const shownError = await page.evaluate(() => document.getElementById('error').textContent);
+
+  // Mode (iii): drag the axis tip nearest the middle sideways, in small mouse steps.
+  await page.check('input[name=mode][value=axis]');
+  const tip = await page.evaluate(() => window.honeycomb.axisTipNearCentre());
+  await page.mouse.move(tip.x, tip.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 10; k++) {
+    await page.mouse.move(tip.x + 6 * k, tip.y - 3 * k);
+    await page.waitForTimeout(30);
+  }
+  await page.mouse.up();
+  // Solved: the last update of the drag's stroke says done, and nothing came for a while.
+  await page.waitForFunction(() => {
+    const h = window.honeycomb, s = h.lastState;
+    return s && s.stroke !== null && s.done && performance.now() - h.lastStateAt > 700
+      && document.getElementById('status').textContent === 'ready';
+  }, null, { timeout: 30000, polling: 100 }).catch(() => fail('the drag was never solved'));
+  const after = await page.evaluate(() => ({
+    states: window.honeycomb.states,
+    stroke: window.honeycomb.lastState.stroke,
+    offset: Array.from(window.honeycomb.lastState.offset),
+    omega: Number(document.getElementById('omega_max').textContent),
+    iterations: Number(document.getElementById('iteration').textContent),
+    undo: !document.getElementById('undo').disabled,
+  }));
+  let moved = 0;
+  for (let i = 0; i < before.offset.length; i++) moved = Math.max(moved, Math.abs(after.offset[i] - before.offset[i]));
+  await page.screenshot({ path: screenshot });
+  const findings = { vertex: tip.vertex, moved, omega_before: before.omega, omega_after: after.omega,
+    iterations: after.iterations, updates: after.states - before.states, error_shown: shownError, undo: after.undo };
+  console.log(JSON.stringify(findings));
+  if (!(moved > 1e-3)) fail(`the drag did not change the model (largest move ${moved})`);
+  if (!(after.omega < 0.05)) fail(`omega_max after the drag ${after.omega} degrees, expected < 0.05`);
+  if (!after.undo) fail('undo is not offered after an edit');
+} finally {
+  await browser.close();
+}
