@@ -52,8 +52,14 @@ impl Client {
             .map_err(|e| Error::Parameter(format!("send failed: {e}")))
     }
 
+    pub fn send_binary(&mut self, bytes: &[u8]) -> Result<()> {
+        self.socket
+            .send(Message::binary(bytes.to_vec()))
+            .map_err(|e| Error::Parameter(format!("send failed: {e}")))
+    }
+
     /// The next JSON message from the server.
-    pub fn next(&mut self) -> Result<Value> {
+    pub fn receive(&mut self) -> Result<Value> {
         loop {
             match self.socket.read() {
                 Ok(Message::Text(t)) => {
@@ -70,7 +76,7 @@ impl Client {
     /// while waiting for something else ends the wait.
     pub fn until(&mut self, kind: &str, accept: impl Fn(&Value) -> bool) -> Result<Value> {
         loop {
-            let m = self.next()?;
+            let m = self.receive()?;
             if m["type"] == kind && accept(&m) {
                 return Ok(m);
             }

@@ -105,7 +105,7 @@ fn malformed_messages_get_an_error_and_change_nothing() {
         json!({"type": "drag_axis", "vertex": 1, "direction": [0, 0], "radius": 2}).to_string(),
         json!({"type": "drag_vertex", "vertex": 1, "target": [0, 0, 1], "extra": true}).to_string(),
         json!({"type": "slide", "vertex": -1, "distance": 0.1}).to_string(),
-        format!("{{\"type\":\"slide\",\"vertex\":1,\"distance\":1e999}}"),
+        r#"{"type":"slide","vertex":1,"distance":1e999}"#.to_string(),
         json!({"type": "save", "name": "x".repeat(70 * 1024)}).to_string(),
     ];
     for text in &bad {
@@ -127,8 +127,9 @@ fn malformed_messages_get_an_error_and_change_nothing() {
         assert!(!e["message"].as_str().unwrap().is_empty(), "{m}");
     }
     // A binary frame.
-    c.send_text("").ok();
-    c.until("error", |_| true).unwrap();
+    c.send_binary(&[1, 2, 3]).unwrap();
+    let e = c.until("error", |_| true).unwrap();
+    assert!(e["message"].as_str().unwrap().contains("binary"));
     // The last good state is kept: a cancel shows the geometry the page started with.
     c.send(&json!({"type": "cancel"})).unwrap();
     let now = c.until("state", |_| true).unwrap();

@@ -1,0 +1,115 @@
+//! `honeycomb serve` as a user meets it: the binary started on a free port, the page driven in
+//! real headless Chromium (playwright-core), and the command's own refusals.
+//!
+//! The browser test needs Debian's chromium, node and `web/node_modules/playwright-core`
+//! (`npm ci --prefix web`). Without them it prints why and passes, unless HONEYCOMB_E2E=1
+//! (CI sets it), where a missing piece is a failure.
+
+mod common;
+
+use common::{assert_clean_failure, run, TempDir};
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+
+fn repo() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Kills the server when the test ends, however it ends.
+struct Running(Child);
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn missing_piece() -> Option<String> {
+    let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
+    if !Path::new(&chromium).exists() {
+        return Some(format!(
+            "no Chromium at {chromium} (apt-get install chromium)"
+        ));
+    }
+    if Command::new("node").arg("--version").output().is_err() {
+        return Some("no node".into());
+    }
+    if !repo().join("web/node_modules/playwright-core").exists() {
+        return Some("no web/node_modules/playwright-core (npm ci --prefix web)".into());
+    }
+    None
+}
+
+#[test]
+fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
+    if let Some(why) = missing_piece() {
+        if std::env::var("HONEYCOMB_E2E").as_deref() == Ok("1") {
+            panic!("HONEYCOMB_E2E=1 but the browser test cannot run: {why}");
+        }
+        println!("skipped: {why}");
+        return;
+    }
+    let dir = TempDir::new("serve-browser");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_honeycomb"))
+        .args(["serve", "--port", "0", "--quiet", "--saves"])
+        .arg(dir.join("saves"))
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let _server = Running(child);
+    let mut url = String::new();
+    BufReader::new(stdout).read_line(&mut url).unwrap();
+    let url = url.trim().to_string();
+    assert!(
+        url.starts_with("http://127.0.0.1:"),
+        "serve printed {url:?}"
+    );
+
+    // The screenshot is a test artifact: target/e2e/serve-drag-axis.png.
+    let artifacts = repo().join("target/e2e");
+    std::fs::create_dir_all(&artifacts).unwrap();
+    let screenshot = artifacts.join("serve-drag-axis.png");
+    let _ = std::fs::remove_file(&screenshot);
+    let out = Command::new("node")
+        .arg("e2e/drag-axis.mjs")
+        .arg(&url)
+        .arg(&screenshot)
+        .current_dir(repo().join("web"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    println!("{stdout}{stderr}");
+    assert!(out.status.success(), "the browser test failed: {stderr}");
+    let findings: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    assert!(findings["omega_after"].as_f64().unwrap() < 0.05);
+    assert!(findings["moved"].as_f64().unwrap() > 1e-3);
+    assert!(findings["error_shown"]
+        .as_str()
+        .unwrap()
+        .contains("malformed message"));
+    assert!(std::fs::metadata(&screenshot).unwrap().len() > 10_000);
+}
+
+#[test]
+fn serve_refuses_what_it_cannot_open() {
+    let dir = TempDir::new("serve-refusals");
+    let empty = dir.write("empty.obj", "");
+    let missing = dir.join("no-such-file.obj");
+    let saves = dir.join("saves");
+    let s = |p: &Path| p.to_str().unwrap().to_string();
+    let cases: [(Vec<String>, &[&str]); 3] = [
+        (vec![s(&missing)], &["no-such-file.obj"]),
+        (vec![s(&empty)], &["empty.obj"]),
+        (vec!["--vertices".into(), "10".into()], &["--vertices"]),
+    ];
+    for (args, keywords) in cases {
+        let mut all = vec!["serve".to_string(), "--port".into(), "0".into()];
+        all.extend(args);
+        all.extend(["--saves".to_string(), s(&saves)]);
+        assert_clean_failure(&run(&all), keywords, Some(&saves));
+    }
+}
