@@ -46,13 +46,24 @@ try {
     await page.waitForTimeout(30);
   }
   await page.mouse.up();
-  // Solved: the last update of the drag's stroke says done, and nothing came for a while.
-  await page.waitForFunction(() => {
+  // Solved: the drag's last update says done and nothing more comes for a while (software GL
+  // can hold the page's main thread for long frames, so the quiet time is generous, and it is
+  // checked once more after reading the panel).
+  const settled = () => page.waitForFunction(() => {
     const h = window.honeycomb, s = h.lastState;
-    return s && s.stroke !== null && s.done && performance.now() - h.lastStateAt > 700
+    return s && s.stroke !== null && s.done && performance.now() - h.lastStateAt > 1500
       && document.getElementById('status').textContent === 'ready';
   }, null, { timeout: 30000, polling: 100 }).catch(() => fail('the drag was never solved'));
+  await settled();
+  for (let tries = 0; ; tries++) {
+    const n = await page.evaluate(() => window.honeycomb.states);
+    await page.waitForTimeout(1500);
+    if (n === await page.evaluate(() => window.honeycomb.states)) break;
+    if (tries === 10) fail('the page never settled');
+    await settled();
+  }
   const after = await page.evaluate(() => ({
+    errors: window.honeycomb.errors.slice(1),
     states: window.honeycomb.states,
     stroke: window.honeycomb.lastState.stroke,
     offset: Array.from(window.honeycomb.lastState.offset),
@@ -64,11 +75,12 @@ try {
   for (let i = 0; i < before.offset.length; i++) moved = Math.max(moved, Math.abs(after.offset[i] - before.offset[i]));
   await page.screenshot({ path: screenshot });
   const findings = { vertex: tip.vertex, moved, omega_before: before.omega, omega_after: after.omega,
-    iterations: after.iterations, updates: after.states - before.states, error_shown: shownError, undo: after.undo };
+    iterations: after.iterations, errors_after_drag: after.errors, updates: after.states - before.states, error_shown: shownError, undo: after.undo };
   console.log(JSON.stringify(findings));
   if (!(moved > 1e-3)) fail(`the drag did not change the model (largest move ${moved})`);
   if (!(after.omega < 0.05)) fail(`omega_max after the drag ${after.omega} degrees, expected < 0.05`);
   if (!after.undo) fail('undo is not offered after an edit');
+  if (after.errors.length) fail(`errors during the drag: ${after.errors.join(' | ')}`);
 } finally {
   await browser.close();
 }
