@@ -249,7 +249,7 @@ canvas.addEventListener('pointermove', (event) => {
   if (drag.mode === 'vertex') {
     const onSurface = raycaster.intersectObject(objects.surfaceMesh)[0];
     const target = onSurface ? onSurface.point : raycaster.ray.intersectPlane(drag.plane, hit);
-    if (target) queue({ type: 'drag_vertex', vertex: drag.vertex, target: target.toArray(), stroke: drag.stroke });
+    if (target) queue({ type: 'drag_vertex', vertex: drag.vertex, target: target.toArray(), radius: radius(), stroke: drag.stroke });
   } else if (drag.mode === 'axis') {
     if (!raycaster.ray.intersectPlane(drag.plane, hit)) return;
     // The axis turns as if it were a lever thirty edges long: an axis is short on screen, and

@@ -1,5 +1,6 @@
 // End-to-end: the editor page in headless Chromium. Loads the served demo honeycomb, drags a
-// node axis with the mouse, waits for the re-solve, checks the panel and writes a screenshot.
+// node axis with the mouse, waits for the re-solve, checks the panel and writes a screenshot;
+// then undoes it with the button and drags a base-mesh vertex (mode i).
 // Usage: node e2e/drag-axis.mjs URL SCREENSHOT.png   (CHROMIUM: the browser, default
 // /usr/bin/chromium). Prints one JSON line of findings; exits non-zero on a failed check.
 import { chromium } from 'playwright-core';
@@ -71,16 +72,49 @@ try {
     iterations: Number(document.getElementById('iteration').textContent),
     undo: !document.getElementById('undo').disabled,
   }));
-  let moved = 0;
-  for (let i = 0; i < before.offset.length; i++) moved = Math.max(moved, Math.abs(after.offset[i] - before.offset[i]));
+  const largestMove = (a, b) => a.reduce((m, x, i) => Math.max(m, Math.abs(x - b[i])), 0);
+  const moved = largestMove(after.offset, before.offset);
   await page.screenshot({ path: screenshot });
   const findings = { vertex: tip.vertex, moved, omega_before: before.omega, omega_after: after.omega,
-    iterations: after.iterations, errors_after_drag: after.errors, updates: after.states - before.states, error_shown: shownError, undo: after.undo };
+    iterations: after.iterations, errors_after_drag: after.errors, updates: after.states - before.states,
+    error_shown: shownError, undo: after.undo };
+
+  // The undo button brings back the honeycomb from before the drag.
+  await page.click('#undo');
+  await page.waitForFunction((offset) => {
+    const s = window.honeycomb.lastState;
+    return s.offset.length === offset.length && s.offset.every((x, i) => x === offset[i]);
+  }, before.offset, { timeout: 10000 }).then(() => { findings.undo_restored = true; })
+    .catch(() => { findings.undo_restored = false; });
+
+  // Mode (i): drag the middle base-mesh vertex a little; the honeycomb re-solves.
+  await page.check('input[name=mode][value=vertex]');
+  const v = await page.evaluate((k) => ({ ...window.honeycomb.screenOf(k), base: Array.from(window.honeycomb.lastState.base) }), tip.vertex);
+  await page.mouse.move(v.x, v.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 5; k++) {
+    await page.mouse.move(v.x + 3 * k, v.y);
+    await page.waitForTimeout(30);
+  }
+  await page.mouse.up();
+  await settled();
+  const vertexDrag = await page.evaluate(() => ({
+    base: Array.from(window.honeycomb.lastState.base),
+    omega: Number(document.getElementById('omega_max').textContent),
+    closeness: Number(document.getElementById('closeness_max').textContent),
+  }));
+  findings.vertex_drag_moved = largestMove(vertexDrag.base, v.base);
+  findings.vertex_drag_omega = vertexDrag.omega;
+  findings.vertex_drag_closeness = vertexDrag.closeness;
   console.log(JSON.stringify(findings));
+
   if (!(moved > 1e-3)) fail(`the drag did not change the model (largest move ${moved})`);
   if (!(after.omega < 0.05)) fail(`omega_max after the drag ${after.omega} degrees, expected < 0.05`);
   if (!after.undo) fail('undo is not offered after an edit');
   if (after.errors.length) fail(`errors during the drag: ${after.errors.join(' | ')}`);
+  if (!findings.undo_restored) fail('undo did not restore the honeycomb from before the drag');
+  if (!(findings.vertex_drag_moved > 1e-3)) fail('the vertex drag did not change the model');
+  if (!(vertexDrag.omega < 0.05)) fail(`omega_max after the vertex drag ${vertexDrag.omega} degrees`);
 } finally {
   await browser.close();
 }

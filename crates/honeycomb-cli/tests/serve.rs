@@ -91,6 +91,8 @@ fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
         .as_str()
         .unwrap()
         .contains("malformed message"));
+    assert_eq!(findings["undo_restored"], true);
+    assert!(findings["vertex_drag_omega"].as_f64().unwrap() < 0.05);
     assert!(std::fs::metadata(&screenshot).unwrap().len() > 10_000);
 }
 

@@ -1,6 +1,6 @@
 //! The WebSocket messages between the page and the editor, as JSON text frames.
 
-use honeycomb::interactive::{Edit, View, MAX_RADIUS};
+use honeycomb::interactive::{Edit, View};
 use honeycomb::structure::Honeycomb;
 use honeycomb::Vec3;
 use serde::Deserialize;
@@ -14,10 +14,13 @@ pub const MAX_MESSAGE_BYTES: usize = 64 * 1024;
 #[derive(Debug, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ClientMessage {
-    /// Mode (i): move a base-mesh vertex (towards `target`, kept on S) and re-optimize.
+    /// Mode (i): move a base-mesh vertex (towards `target`, kept on S), its neighbours up to
+    /// `radius` rings along, and re-optimize.
     DragVertex {
         vertex: usize,
         target: [f64; 3],
+        #[serde(default)]
+        radius: usize,
         stroke: Option<u64>,
     },
     /// Mode (ii): slide a vertex by `distance` along its node axis; no optimization.
@@ -65,11 +68,13 @@ impl ClientMessage {
             ClientMessage::DragVertex {
                 vertex,
                 target,
+                radius,
                 stroke,
             } => Some((
                 Edit::MoveVertex {
                     vertex: *vertex,
                     target: v3(target),
+                    radius: *radius,
                 },
                 *stroke,
             )),
@@ -93,7 +98,7 @@ impl ClientMessage {
                 Edit::TurnAxis {
                     vertex: *vertex,
                     direction: v3(direction),
-                    radius: (*radius).min(MAX_RADIUS + 1),
+                    radius: *radius,
                 },
                 *stroke,
             )),

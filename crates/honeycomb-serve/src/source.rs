@@ -3,7 +3,7 @@
 
 use honeycomb::export::read_structure;
 use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::init::{init, CellSize, InitOptions};
+use honeycomb::init::{init, CellSize, Flattener, InitOptions};
 use honeycomb::interactive::Workspace;
 use honeycomb::mesh::{read_mesh, PolyMesh};
 use honeycomb::{Error, Result};
@@ -58,7 +58,16 @@ impl Source {
             }
             Source::Surface { path, cells } => {
                 let surface = read_mesh(path)?.mesh;
-                let base = init(&surface, &InitOptions::new(CellSize::Cells(*cells)))?.base;
+                // As `pipeline` does: the plan-view grid first (a honeycomb from the start
+                // wherever S does not fold over seen from above), else the ARAP one.
+                let options = |flattener| InitOptions {
+                    flattener,
+                    ..InitOptions::new(CellSize::Cells(*cells))
+                };
+                let base = match init(&surface, &options(Flattener::Project)) {
+                    Ok(made) => made.base,
+                    Err(_) => init(&surface, &options(Flattener::Arap))?.base,
+                };
                 Workspace::new(&base, Some(&surface), thickness)
             }
         }

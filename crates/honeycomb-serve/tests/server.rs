@@ -243,3 +243,37 @@ fn a_drag_streams_every_step_and_a_newer_one_wins() {
     server.stop();
     let _ = std::fs::remove_dir_all(&saves);
 }
+
+/// `serve SURFACE`: a design surface gets init's hex mesh, solved into a honeycomb.
+#[test]
+fn a_design_surface_gets_a_hex_mesh_first() {
+    let dir = std::env::temp_dir().join(format!("honeycomb-serve-surface-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (_, surface) = honeycomb::generate::lifted_hex_patch(Shape::Saddle, 600);
+    let path = dir.join("saddle.obj");
+    honeycomb::mesh::write_mesh(&path, &surface).unwrap();
+    let options = ServeOptions {
+        port: 0,
+        save_root: dir.join("saves"),
+        ..ServeOptions::default()
+    };
+    let server = start(&Source::from_path(&path, 200), options).unwrap();
+    let (_, mesh, state) = connect(&server);
+    let nv = mesh["vertices"].as_u64().unwrap();
+    assert!((300..600).contains(&nv), "{nv} vertices for 200 cells");
+    assert!(mesh["source"].as_str().unwrap().contains("saddle.obj"));
+    let omega = state["measures"]["omega_max_deg"].as_f64().unwrap();
+    assert!(omega < 0.01, "omega {omega}");
+    server.stop();
+    // A missing file is an error before anything is served.
+    let missing = Source::from_path(&dir.join("missing.obj"), 200);
+    assert!(start(
+        &missing,
+        ServeOptions {
+            port: 0,
+            ..ServeOptions::default()
+        }
+    )
+    .is_err());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -107,8 +107,15 @@ fn moving_a_vertex_follows_the_pointer_on_s() {
     let v = middle(&before.honeycomb);
     let edge = before.measures.mean_edge_length;
     let target = before.honeycomb.base.vertices[v] + Vec3::new(0.4 * edge, 0.0, 0.0);
-    s.apply(Edit::MoveVertex { vertex: v, target }, Some(7))
-        .unwrap();
+    s.apply(
+        Edit::MoveVertex {
+            vertex: v,
+            target,
+            radius: 2,
+        },
+        Some(7),
+    )
+    .unwrap();
     s.finish().unwrap();
     let after = s.view();
     let m = &after.measures;
@@ -206,10 +213,17 @@ fn nonsense_edits_are_refused() {
         Edit::MoveVertex {
             vertex: n,
             target: Vec3::ZERO,
+            radius: 0,
         },
         Edit::MoveVertex {
             vertex: 0,
             target: Vec3::new(f64::NAN, 0.0, 0.0),
+            radius: 0,
+        },
+        Edit::MoveVertex {
+            vertex: 0,
+            target: Vec3::ZERO,
+            radius: 51,
         },
         Edit::TurnAxis {
             vertex: 0,
@@ -231,4 +245,46 @@ fn nonsense_edits_are_refused() {
         assert!(!err.is_empty());
     }
     assert!(!s.can_undo(), "a refused edit leaves no undo step");
+}
+
+#[test]
+fn a_long_vertex_drag_bends_the_cells_instead_of_folding_them() {
+    use honeycomb::interactive::MOVE_PER_RING;
+    let ws = dome();
+    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let before = s.view();
+    let v = middle(&before.honeycomb);
+    let edge = before.measures.mean_edge_length;
+    // Three edges away in one gesture of several messages.
+    for k in 1..=6 {
+        let target = before.honeycomb.base.vertices[v] + Vec3::new(0.5 * k as f64 * edge, 0.0, 0.0);
+        s.apply(
+            Edit::MoveVertex {
+                vertex: v,
+                target,
+                radius: 3,
+            },
+            Some(1),
+        )
+        .unwrap();
+        s.step().unwrap();
+    }
+    s.finish().unwrap();
+    let after = s.view();
+    let moved =
+        (after.honeycomb.base.vertices[v] - before.honeycomb.base.vertices[v]).norm() / edge;
+    assert!(
+        moved > 0.8 * MOVE_PER_RING * 4.0 && moved < 1.05 * MOVE_PER_RING * 4.0,
+        "moved {moved:.3} edges"
+    );
+    let m = &after.measures;
+    assert!(m.omega_max_deg < 0.05, "omega {}", m.omega_max_deg);
+    let shortest = before.measures.min_edge_length;
+    assert!(
+        m.min_edge_length > 0.5 * shortest,
+        "shortest edge {} edges, {} before",
+        m.min_edge_length / edge,
+        shortest / edge
+    );
+    assert!(s.undo() && !s.can_undo(), "one gesture, one undo step");
 }

@@ -143,8 +143,15 @@ impl Default for SessionOptions {
 /// One user edit, in model units.
 #[derive(Clone, Copy, Debug)]
 pub enum Edit {
-    /// Mode (i): the vertex goes to the point of S closest to `target`; re-optimize.
-    MoveVertex { vertex: usize, target: Vec3 },
+    /// Mode (i): the vertex goes to the point of S closest to `target` and is held there; the
+    /// vertices up to `radius` rings away start the solve moved along with damping (a soft
+    /// selection, so that the cells bend instead of folding); re-optimize. A gesture moves the vertex at most
+    /// `MOVE_PER_RING * (radius + 1)` mean edge lengths from where it started.
+    MoveVertex {
+        vertex: usize,
+        target: Vec3,
+        radius: usize,
+    },
     /// Mode (ii): the vertex moves `distance` along its node axis (towards M' when positive),
     /// M' stays: the wall planes do not change, nothing is optimized.
     SlideVertex { vertex: usize, distance: f64 },
@@ -161,10 +168,23 @@ pub enum Edit {
 /// long before this.
 pub const MAX_RADIUS: usize = 50;
 
+/// How far a dragged vertex may go per ring of its soft selection (mean edge lengths): the
+/// damping's steepest slope is about 1.5 over the radius, so neighbours shift at most 0.3 edges
+/// against each other and the cells bend without collapsing (at 0.35 per ring a 1.4-edge drag
+/// over 3 rings left an edge of 0.17 edges; at 0.2 the shortest stays above half its length).
+/// A single vertex (radius 0) moves at most 0.2 edges per gesture.
+pub const MOVE_PER_RING: f64 = 0.2;
+
 #[derive(Clone)]
 struct Snapshot {
     x: Vec<f64>,
     depths: Vec<f64>,
+}
+
+/// Vertex positions (normalized) and node axes at the start of a gesture.
+struct StrokeStart {
+    positions: Vec<Vec3>,
+    axes: Vec<Vec3>,
 }
 
 /// What the editor shows after a step: the realized honeycomb and its measures.
@@ -189,9 +209,9 @@ pub struct EditSession<'a> {
     redo: Vec<Snapshot>,
     /// The gesture the last edit belonged to: one undo step per gesture.
     stroke: Option<u64>,
-    /// The node axes when the gesture began: every turn of a gesture is measured from them,
-    /// so that its messages do not pile their spread turns on top of each other.
-    stroke_axes: Option<Vec<Vec3>>,
+    /// The geometry when the gesture began: every message of a gesture is measured from it,
+    /// so that the spread moves and turns of its messages do not pile up.
+    stroke_start: Option<StrokeStart>,
 }
 
 impl<'a> EditSession<'a> {
@@ -239,7 +259,7 @@ impl<'a> EditSession<'a> {
             undo: Vec::new(),
             redo: Vec::new(),
             stroke: None,
-            stroke_axes: None,
+            stroke_start: None,
             solver_options,
             options,
         })
@@ -259,16 +279,40 @@ impl<'a> EditSession<'a> {
         self.check(&edit)?;
         if stroke.is_none() || stroke != self.stroke {
             self.remember();
-            self.stroke_axes = None;
+            self.stroke_start = None;
         }
         self.stroke = stroke;
         // Targets belong to one edit: a newer edit replaces the running one's.
         self.cancel();
         let unit = self.ws.frame.unit;
         match edit {
-            Edit::MoveVertex { vertex, target } => {
+            Edit::MoveVertex {
+                vertex,
+                target,
+                radius,
+            } => {
+                let start = self.stroke_start().positions.clone();
                 let on_s = self.ws.surface.closest_point(self.normalized(target)).point;
-                self.positions.set_one(vertex, Some(on_s));
+                let mut shift = on_s - start[vertex];
+                let reach = MOVE_PER_RING * (radius + 1) as f64;
+                if shift.norm() > reach {
+                    shift = shift * (reach / shift.norm());
+                }
+                // The soft selection moves the start of the solve; only the dragged vertex is
+                // held (pinning its neighbours too fought the node conditions: omega 5 degrees
+                // after a 0.4-edge move over 2 rings).
+                for (v, d) in rings(&self.ws.conn, vertex, radius) {
+                    let p = self
+                        .ws
+                        .surface
+                        .closest_point(start[v] + shift * damping(d, radius))
+                        .point;
+                    let at = self.layout.vertex(v);
+                    self.x[at..at + 3].copy_from_slice(&p.to_array());
+                    if v == vertex {
+                        self.positions.set_one(v, Some(p));
+                    }
+                }
                 self.active = Some(SolveState::new(self.options.eps));
             }
             Edit::SlideVertex { vertex, distance } => {
@@ -286,12 +330,14 @@ impl<'a> EditSession<'a> {
                 direction,
                 radius,
             } => {
-                if self.stroke_axes.is_none() {
-                    self.stroke_axes = Some(self.axes_now());
-                }
-                let start = self.stroke_axes.as_deref().unwrap_or_default();
-                let turned =
-                    spread_turn(&self.ws.conn, start, vertex, direction.normalized(), radius);
+                let start = self.stroke_start().axes.clone();
+                let turned = spread_turn(
+                    &self.ws.conn,
+                    &start,
+                    vertex,
+                    direction.normalized(),
+                    radius,
+                );
                 for (v, a) in turned {
                     self.axes.set_one(v, Some(a));
                 }
@@ -312,6 +358,15 @@ impl<'a> EditSession<'a> {
                 )))
             }
         };
+        let radius_ok = |radius: usize| {
+            if radius <= MAX_RADIUS {
+                Ok(())
+            } else {
+                Err(Error::Parameter(format!(
+                    "radius {radius}: expected 0 to {MAX_RADIUS} rings"
+                )))
+            }
+        };
         let finite = |what: &str, ok: bool| {
             if ok {
                 Ok(())
@@ -320,8 +375,13 @@ impl<'a> EditSession<'a> {
             }
         };
         match *edit {
-            Edit::MoveVertex { vertex, target } => {
+            Edit::MoveVertex {
+                vertex,
+                target,
+                radius,
+            } => {
                 vertex_ok(vertex)?;
+                radius_ok(radius)?;
                 finite("target", target.is_finite())
             }
             Edit::SlideVertex { vertex, distance } => {
@@ -344,14 +404,20 @@ impl<'a> EditSession<'a> {
                 if direction.norm() < 1e-12 {
                     return Err(Error::Parameter("axis direction is zero".into()));
                 }
-                if radius > MAX_RADIUS {
-                    return Err(Error::Parameter(format!(
-                        "radius {radius}: expected 0 to {MAX_RADIUS} rings"
-                    )));
-                }
-                Ok(())
+                radius_ok(radius)
             }
         }
+    }
+
+    fn stroke_start(&mut self) -> &StrokeStart {
+        if self.stroke_start.is_none() {
+            let positions = (0..self.num_vertices())
+                .map(|v| self.layout.vertex_at(&self.x, v))
+                .collect();
+            let axes = self.axes_now();
+            self.stroke_start = Some(StrokeStart { positions, axes });
+        }
+        self.stroke_start.as_ref().expect("set above")
     }
 
     fn normalized(&self, p: Vec3) -> Vec3 {
@@ -415,7 +481,7 @@ impl<'a> EditSession<'a> {
         self.depths = s.depths;
         self.cancel();
         self.stroke = None;
-        self.stroke_axes = None;
+        self.stroke_start = None;
     }
 
     fn remember(&mut self) {
