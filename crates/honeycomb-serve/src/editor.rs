@@ -62,38 +62,40 @@ impl Editor {
     pub fn run(self, first: Workspace, label: String, ready: std::sync::mpsc::Sender<Result<()>>) {
         let mut ready = Some(ready);
         let (mut ws, mut label) = (first, label);
+        // The workspace before a load, to go back to when the loaded one cannot be solved.
+        let mut previous: Option<(Workspace, String)> = None;
         loop {
-            let session = EditSession::new(&ws, self.options.clone());
-            let mut session = match (session, ready.take()) {
-                (Ok(s), r) => {
-                    if let Some(r) = r {
+            let outcome = match EditSession::new(&ws, self.options.clone()) {
+                Ok(mut session) => {
+                    if let Some(r) = ready.take() {
                         let _ = r.send(Ok(()));
                     }
-                    s
+                    let h = session.view().honeycomb;
+                    self.broadcast(mesh_message(&h, &ws.model_surface, &label));
+                    self.broadcast(self.state(&session, &Progress::new()));
+                    match self.edit(&mut session, &ws, &label) {
+                        Next::Load(next, next_label) => Ok((next, next_label)),
+                        Next::Stop => return,
+                    }
                 }
-                (Err(e), Some(r)) => {
-                    let _ = r.send(Err(e));
-                    return;
-                }
-                (Err(e), None) => {
-                    // A load that cannot be solved: say so; nothing else to go back to here.
-                    self.broadcast(error_message(&format!("load failed: {e}")));
-                    return;
-                }
+                Err(e) => Err(e),
             };
-            self.broadcast(mesh_message(
-                &session.view().honeycomb,
-                &ws.model_surface,
-                &label,
-            ));
-            self.broadcast(self.state(&session, &Progress::new()));
-            match self.edit(&mut session, &ws, &label) {
-                Next::Load(next, next_label) => {
-                    drop(session);
-                    ws = *next;
-                    label = next_label;
+            match outcome {
+                Ok((next, next_label)) => {
+                    let old = std::mem::replace(&mut ws, *next);
+                    previous = Some((old, std::mem::replace(&mut label, next_label)));
                 }
-                Next::Stop => return,
+                Err(e) => {
+                    if let Some(r) = ready.take() {
+                        let _ = r.send(Err(e));
+                        return;
+                    }
+                    self.broadcast(error_message(&format!("load failed: {e}")));
+                    match previous.take() {
+                        Some(back) => (ws, label) = back,
+                        None => return,
+                    }
+                }
             }
         }
     }
@@ -225,7 +227,10 @@ impl Editor {
                     Err(e) => self.broadcast(error_message(&format!("load failed: {e}"))),
                 }
             }
-            _ => unreachable!("edits are handled above"),
+            // The edits, handled above.
+            ClientMessage::DragVertex { .. }
+            | ClientMessage::Slide { .. }
+            | ClientMessage::DragAxis { .. } => {}
         }
         None
     }
