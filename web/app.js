@@ -18,7 +18,7 @@ scene.add(sun);
 
 // The page's state, also read by the end-to-end test.
 const app = (window.honeycomb = {
-  mesh: null, lastState: null, states: 0, errors: [], connected: false,
+  mesh: null, lastState: null, states: 0, errors: [], connected: false, drags: 0,
   screenOf, axisTipNearCentre,
 });
 
@@ -98,6 +98,7 @@ function buildMesh(m) {
   for (const o of Object.values(objects)) scene.add(o);
   objects.framed = false;
   sphereImage.build(m.faces, nv);
+  redraw();
 }
 
 function applyState(s) {
@@ -152,6 +153,7 @@ function applyState(s) {
   $('undo').disabled = !s.can_undo;
   $('redo').disabled = !s.can_redo;
   sphereImage.update(B, O);
+  redraw();
 }
 
 // Blue (0) over green and yellow to red (at `scale` and above), on a log scale from scale/1e4.
@@ -218,6 +220,7 @@ function markPicked(d) {
   g.attributes.position.needsUpdate = true;
   g.setDrawRange(0, 1);
   g.computeBoundingSphere();
+  redraw();
 }
 
 canvas.addEventListener('pointerdown', (event) => {
@@ -240,6 +243,7 @@ canvas.addEventListener('pointerdown', (event) => {
     slid: 0, pending: null,
   };
   markPicked(drag);
+  app.drags += 1;
 });
 
 canvas.addEventListener('pointermove', (event) => {
@@ -284,6 +288,7 @@ function endDrag() {
   drag = null;
   controls.enabled = true;
   objects.picked.geometry.setDrawRange(0, 0);
+  redraw();
 }
 canvas.addEventListener('pointerup', endDrag);
 canvas.addEventListener('pointercancel', endDrag);
@@ -332,8 +337,10 @@ const sphereImage = (() => {
       const mean = new THREE.Vector3();
       const axes = [];
       for (let v = 0; v < n; v++) { axes.push(axis(v)); mean.add(axes[v]); }
-      // Look at the image from the mean axis, so it sits in the middle of the inset.
-      cam.position.copy(mean.normalize().multiplyScalar(4.2));
+      // Look at the image from the mean axis, close enough that it fills the inset.
+      mean.normalize();
+      const spread = axes.reduce((m, a) => Math.max(m, a.distanceTo(mean)), 0.02);
+      cam.position.copy(mean).multiplyScalar(Math.min(4.2, Math.max(1.15, 1 + 1.3 * spread / 0.268)));
       cam.up.set(0, 0, 1);
       if (Math.abs(mean.z) > 0.99) cam.up.set(0, 1, 0);
       cam.lookAt(0, 0, 0);
@@ -369,9 +376,17 @@ function resize() {
     camera.updateProjectionMatrix();
   }
 }
+// Draw only when something changed (a state, the camera, the window): an idle page costs
+// nothing, and a software-rendered one (headless tests) keeps its main thread free.
+let dirty = true;
+function redraw() { dirty = true; }
+controls.addEventListener('change', redraw);
+window.addEventListener('resize', redraw);
 renderer.setAnimationLoop(() => {
   resize();
   controls.update();
+  if (!dirty) return;
+  dirty = false;
   renderer.render(scene, camera);
   sphereImage.render();
 });

@@ -20,6 +20,20 @@ try {
   const logs = [];
   page.on('console', (m) => logs.push(`${m.type()}: ${m.text()}`));
   page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
+  const settled = (what) => page.waitForFunction(() => {
+    const h = window.honeycomb, s = h.lastState;
+    return s && s.stroke !== null && s.done && performance.now() - h.lastStateAt > 1500
+      && document.getElementById('status').textContent === 'ready';
+  }, null, { timeout: 60000, polling: 100 }).catch(async () => {
+    const s = await page.evaluate(() => {
+      const h = window.honeycomb, s = h.lastState;
+      return { stroke: s.stroke, done: s.done, quiet_ms: performance.now() - h.lastStateAt, drags: h.drags };
+    });
+    fail(`the ${what} was never solved: ${JSON.stringify(s)}`);
+  });
+  const picked = async (before, what) => {
+    if (await page.evaluate(() => window.honeycomb.drags) === before) fail(`the ${what} picked nothing`);
+  };
   await page.goto(url);
   await page.waitForFunction(() => window.honeycomb && window.honeycomb.lastState, null, { timeout: 30000 })
     .catch(() => fail(`the page showed no honeycomb: ${logs.join(' | ')}`));
@@ -42,6 +56,7 @@ try {
   const tip = await page.evaluate(() => window.honeycomb.axisTipNearCentre());
   await page.mouse.move(tip.x, tip.y);
   await page.mouse.down();
+  await picked(0, 'axis drag');
   for (let k = 1; k <= 10; k++) {
     await page.mouse.move(tip.x + 6 * k, tip.y - 3 * k);
     await page.waitForTimeout(30);
@@ -50,18 +65,13 @@ try {
   // Solved: the drag's last update says done and nothing more comes for a while (software GL
   // can hold the page's main thread for long frames, so the quiet time is generous, and it is
   // checked once more after reading the panel).
-  const settled = () => page.waitForFunction(() => {
-    const h = window.honeycomb, s = h.lastState;
-    return s && s.stroke !== null && s.done && performance.now() - h.lastStateAt > 1500
-      && document.getElementById('status').textContent === 'ready';
-  }, null, { timeout: 30000, polling: 100 }).catch(() => fail('the drag was never solved'));
-  await settled();
+  await settled('axis drag');
   for (let tries = 0; ; tries++) {
     const n = await page.evaluate(() => window.honeycomb.states);
     await page.waitForTimeout(1500);
     if (n === await page.evaluate(() => window.honeycomb.states)) break;
     if (tries === 10) fail('the page never settled');
-    await settled();
+    await settled('axis drag');
   }
   const after = await page.evaluate(() => ({
     errors: window.honeycomb.errors.slice(1),
@@ -92,12 +102,13 @@ try {
   const v = await page.evaluate((k) => ({ ...window.honeycomb.screenOf(k), base: Array.from(window.honeycomb.lastState.base) }), tip.vertex);
   await page.mouse.move(v.x, v.y);
   await page.mouse.down();
+  await picked(1, 'vertex drag');
   for (let k = 1; k <= 5; k++) {
     await page.mouse.move(v.x + 3 * k, v.y);
     await page.waitForTimeout(30);
   }
   await page.mouse.up();
-  await settled();
+  await settled('vertex drag');
   const vertexDrag = await page.evaluate(() => ({
     base: Array.from(window.honeycomb.lastState.base),
     omega: Number(document.getElementById('omega_max').textContent),
