@@ -435,6 +435,7 @@ impl<'a> EditSession<'a> {
         self.release();
     }
 
+    /// Forgets the targets: they belong to one edit.
     fn release(&mut self) {
         let nv = self.num_vertices();
         self.positions.set(vec![None; nv]);
