@@ -1,5 +1,6 @@
 //! `honeycomb serve`: the interactive editor in the browser (a thin front over honeycomb-serve).
 
+use crate::progress::{Output, Spinner};
 use honeycomb::generate::Shape;
 use honeycomb::{Error, Result};
 use honeycomb_serve::{start, ServeOptions, Source};
@@ -31,9 +32,12 @@ pub struct Args {
     /// Distance of M' from M in model units (default 0.3 mean edge lengths).
     #[arg(long, allow_negative_numbers = true)]
     pub thickness: Option<f64>,
-    /// Print only errors.
+    /// Print only errors (and the address on stdout).
     #[arg(short, long)]
     pub quiet: bool,
+    /// Print the address as one JSON object on stdout: {"url": ..., "source": ...}.
+    #[arg(long, conflicts_with = "quiet")]
+    pub json: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -67,13 +71,22 @@ pub fn run(args: Args) -> Result<()> {
         thickness: args.thickness,
         ..ServeOptions::default()
     };
-    if !args.quiet {
-        eprintln!("solving {} ...", source.label());
-    }
-    let server = start(&source, options)?;
+    let output = Output::from_flags(args.quiet, args.json);
+    // Making the base mesh and the first solve can take seconds on a large surface.
+    let spinner = Spinner::new(output, "making the honeycomb to edit");
+    let server = start(&source, options);
+    spinner.finish();
+    let server = server?;
     // The address on stdout, alone on its line: scripts and the tests read it from there.
-    println!("{}", server.url());
-    if !args.quiet {
+    if output == Output::Json {
+        println!(
+            "{}",
+            serde_json::json!({ "url": server.url(), "source": source.label() })
+        );
+    } else {
+        println!("{}", server.url());
+    }
+    if output == Output::Human {
         eprintln!(
             "honeycomb editor at {} (saves go to {}); Ctrl-C stops it",
             server.url(),

@@ -115,3 +115,39 @@ fn serve_refuses_what_it_cannot_open() {
         assert_clean_failure(&run(&all), keywords, Some(&saves));
     }
 }
+
+#[test]
+fn serve_json_prints_its_address_as_json() {
+    let dir = TempDir::new("serve-json");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_honeycomb"))
+        .args([
+            "serve",
+            "--port",
+            "0",
+            "--json",
+            "--vertices",
+            "300",
+            "--saves",
+        ])
+        .arg(dir.join("saves"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    let _server = Running(child);
+    let mut line = String::new();
+    BufReader::new(stdout).read_line(&mut line).unwrap();
+    let v: serde_json::Value = serde_json::from_str(line.trim()).unwrap();
+    let url = v["url"].as_str().unwrap();
+    assert!(url.starts_with("http://127.0.0.1:"), "{url}");
+    assert!(v["source"].as_str().unwrap().contains("300 vertices"));
+    // The page is there.
+    let addr = url.trim_start_matches("http://").trim_end_matches('/');
+    let mut s = std::net::TcpStream::connect(addr).unwrap();
+    use std::io::{Read, Write};
+    write!(s, "GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n").unwrap();
+    let mut page = String::new();
+    s.read_to_string(&mut page).unwrap();
+    assert!(page.starts_with("HTTP/1.1 200") && page.contains("honeycomb"));
+}
