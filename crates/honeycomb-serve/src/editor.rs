@@ -6,7 +6,7 @@ use crate::protocol::{error_message, mesh_message, state_message, ClientMessage,
 use crate::source::{save_dir, Source};
 use honeycomb::export::write_structure;
 use honeycomb::interactive::{EditSession, SessionOptions, Workspace};
-use honeycomb::mesh::{write_mesh, PolyMesh};
+use honeycomb::mesh::write_mesh;
 use honeycomb::{Error, Result};
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
@@ -70,8 +70,7 @@ impl Editor {
                     if let Some(r) = ready.take() {
                         let _ = r.send(Ok(()));
                     }
-                    let h = session.view().honeycomb;
-                    self.broadcast(mesh_message(&h, &ws.model_surface, &label));
+                    self.broadcast(mesh_message(&ws, &label));
                     self.broadcast(self.state(&session, &Progress::new()));
                     match self.edit(&mut session, &ws, &label) {
                         Next::Load(next, next_label) => Ok((next, next_label)),
@@ -137,8 +136,7 @@ impl Editor {
             if let Some(command) = command {
                 match command {
                     Command::Hello(reply) => {
-                        let mesh =
-                            mesh_message(&session.view().honeycomb, &ws.model_surface, label);
+                        let mesh = mesh_message(ws, label);
                         let _ = reply.send(Arc::from(mesh.to_string()));
                         let _ = reply.send(Arc::from(self.state(session, &p).to_string()));
                     }
@@ -252,12 +250,10 @@ impl Editor {
         }
         std::fs::create_dir_all(&tmp).map_err(|e| io(&tmp, e))?;
         let view = session.view();
-        let s = &ws.model_surface;
-        let surface = PolyMesh::new(
-            s.vertices().to_vec(),
-            s.triangles().iter().map(|t| t.to_vec()).collect(),
-        );
-        write_mesh(&tmp.join("surface.obj"), &surface)?;
+        write_mesh(
+            &tmp.join("surface.obj"),
+            &ws.model_surface.mesh_for_export(),
+        )?;
         write_structure(&tmp, &view.honeycomb, &json!({ "measures": view.measures }))?;
         if dir.exists() {
             let old = self

@@ -1,7 +1,6 @@
 //! The WebSocket messages between the page and the editor, as JSON text frames.
 
-use honeycomb::interactive::{Edit, View};
-use honeycomb::structure::Honeycomb;
+use honeycomb::interactive::{Edit, View, Workspace};
 use honeycomb::Vec3;
 use serde::Deserialize;
 use serde_json::{json, Value};
@@ -131,14 +130,17 @@ fn flat(points: &[Vec3]) -> Vec<f32> {
 }
 
 /// The topology and the design surface, sent once per connection and after a load.
-pub fn mesh_message(h: &Honeycomb, surface: &honeycomb::surface::Surface, source: &str) -> Value {
+/// The topology comes from the workspace: it is the same for every state, so no solve or
+/// measure is needed to send it.
+pub fn mesh_message(ws: &Workspace, source: &str) -> Value {
+    let surface = &ws.model_surface;
     let triangles: Vec<usize> = surface.triangles().iter().flatten().copied().collect();
     json!({
         "type": "mesh",
         "source": source,
-        "vertices": h.base.vertices.len(),
-        "faces": h.base.faces,
-        "edges": h.edges,
+        "vertices": ws.base.vertices.len(),
+        "faces": ws.base.faces,
+        "edges": ws.conn.edges,
         "surface": { "vertices": flat(surface.vertices()), "triangles": triangles },
     })
 }

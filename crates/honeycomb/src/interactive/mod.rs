@@ -17,7 +17,7 @@ use crate::constraints::{AxisTargets, Layout, SharedTargets, VertexTargets};
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
-use crate::optimize::{families, initial_normals, Frame, Weights};
+use crate::optimize::{check_thickness, families, initial_normals, Frame, Weights};
 use crate::solve::{GuidedProjection, IterationInfo, SolveState, SolverOptions};
 use crate::structure::{measure, node_axes, Honeycomb, Measures};
 use crate::surface::Surface;
@@ -53,11 +53,7 @@ impl Workspace {
         }
         let frame = Frame::of(base);
         let thickness = thickness.unwrap_or(0.3 * frame.unit);
-        if !thickness.is_finite() || thickness <= 0.0 {
-            return Err(Error::Parameter(format!(
-                "thickness {thickness}: expected a positive length in model units"
-            )));
-        }
+        check_thickness(thickness)?;
         let surface_mesh = surface.unwrap_or(base);
         let model_surface = Surface::from_mesh(surface_mesh)?;
         let normalized = frame.to_normalized(base);

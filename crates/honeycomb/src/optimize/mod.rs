@@ -42,15 +42,21 @@ pub struct OptimizeOptions {
     pub quads: Option<QuadOptions>,
 }
 
+/// A distance between M and M' (model units) must be a positive length.
+pub fn check_thickness(t: f64) -> Result<()> {
+    if !t.is_finite() || t <= 0.0 {
+        return Err(Error::Parameter(format!(
+            "thickness {t}: expected a positive length in model units"
+        )));
+    }
+    Ok(())
+}
+
 impl OptimizeOptions {
     fn validate(&self, num_vertices: usize) -> Result<()> {
         self.weights.validate()?;
         if let Some(t) = self.thickness {
-            if !t.is_finite() || t <= 0.0 {
-                return Err(Error::Parameter(format!(
-                    "thickness {t}: expected a positive length in model units"
-                )));
-            }
+            check_thickness(t)?;
         }
         if let Some(length) = self.min_edge {
             if !length.is_finite() || length <= 0.0 {
