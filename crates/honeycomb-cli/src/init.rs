@@ -1,12 +1,14 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{load, optimize_and_write, SolveArgs};
+use crate::optimize::{load, optimize_and_write, BrokenCells, SolveArgs};
 use crate::progress::{Output, Spinner};
 use honeycomb::export::write_json;
 use honeycomb::init::{
     init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, Initialized, Method,
 };
 use honeycomb::mesh::{write_mesh, PolyMesh};
+use honeycomb::optimize::SECOND_TRY_MIN_EDGE;
+use honeycomb::report::Report;
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
 
@@ -140,6 +142,23 @@ fn print_report(made: &Initialized, output: Output, written: &Path) -> Result<()
     Ok(())
 }
 
+/// Says what the pipeline changed to get a honeycomb.
+fn print_settling(report: &Report) {
+    if report.second_try == Some(true) {
+        eprintln!(
+            "note: the default weights gave no honeycomb; this is the second try, without the \
+             opposite-wall fairness and with every edge at least {SECOND_TRY_MIN_EDGE} mean edge \
+             lengths"
+        );
+    }
+    if let Some(dropped) = report.dropped_boundary_cells.filter(|&d| d > 0) {
+        eprintln!(
+            "note: {dropped} boundary cells that the solve broke (collapsed cap, mirrored node \
+             or crossed wall) were dropped; initial.obj is the mesh without them"
+        );
+    }
+}
+
 /// Names the surface file in a mesh error.
 fn name_file(path: &Path, e: Error) -> Error {
     match e {
@@ -214,9 +233,26 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
         write_mesh(&args.output.join("initial.obj"), &made.base)?;
         write_mesh(&args.output.join("surface.obj"), &surface)?;
         write_json(&args.output.join("init.json"), &made.report)?;
-        match optimize_and_write(&made.base, Some(&surface), &args.opts, &args.output) {
+        let dir = &args.output;
+        match optimize_and_write(
+            &made.base,
+            Some(&surface),
+            &args.opts,
+            dir,
+            BrokenCells::Drop,
+        ) {
             Err(Error::Solver(m)) if !last => note(m),
-            result => return result.map(|_| ()),
+            Ok((report, settled)) => {
+                if let Some(settled) = settled {
+                    // The mesh the kept solve started from, so that `optimize` repeats it.
+                    write_mesh(&dir.join("initial.obj"), &settled)?;
+                }
+                if output == Output::Human {
+                    print_settling(&report);
+                }
+                return Ok(());
+            }
+            Err(e) => return Err(e),
         }
     }
     unreachable!("the last candidate returns")

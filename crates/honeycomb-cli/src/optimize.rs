@@ -7,14 +7,15 @@ use honeycomb::mesh::{
     nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
 };
 use honeycomb::optimize::{
-    optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, ParallelOptions, QuadOptions,
-    QuadPattern, Weights,
+    optimize, optimize_made_mesh, shading_axes, unit_light, AxesOptions, OptimizeOptions,
+    ParallelOptions, QuadOptions, QuadPattern, Weights,
 };
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result, Vec3};
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -56,9 +57,10 @@ pub struct SolveArgs {
     /// Weight of keeping boundary vertices on the surface's boundary.
     #[arg(long, default_value_t = Weights::default().boundary, allow_negative_numbers = true)]
     pub w_boundary: f64,
-    /// Weight of opposite-wall fairness in hexagons (fades with the regularization).
-    #[arg(long, default_value_t = Weights::default().fairness, allow_negative_numbers = true)]
-    pub w_fair: f64,
+    /// Weight of opposite-wall fairness in hexagons (fades with the regularization) [default:
+    /// 3; pipeline tries 0 next if 3 gives no honeycomb].
+    #[arg(long, allow_negative_numbers = true)]
+    pub w_fair: Option<f64>,
     /// Keep every edge at least this long (model units), by dummy unknowns [default with
     /// --light: 0.3 mean edge lengths].
     #[arg(long, allow_negative_numbers = true)]
@@ -201,7 +203,7 @@ impl SolveArgs {
             normalization: self.w_norm,
             closeness: self.w_close,
             boundary: self.w_boundary,
-            fairness: self.w_fair,
+            fairness: self.w_fair.unwrap_or(Weights::default().fairness),
             guide: self.w_guide,
         };
         // Named by flag: the user typed flags, not the library's weight names.
@@ -319,13 +321,23 @@ pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
     Ok(loaded.mesh)
 }
 
+/// What happens to boundary cells that the solve breaks (collapsed cap, mirrored node, crossed
+/// wall): a designer's base mesh is solved as given; a mesh `pipeline` made loses them, and
+/// gets a second try without the fairness if the first gives no honeycomb.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BrokenCells {
+    Keep,
+    Drop,
+}
+
 /// Optimizes, measures, writes the structure directory and prints the result.
 pub fn optimize_and_write(
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
     args: &SolveArgs,
     dir: &Path,
-) -> Result<Report> {
+    broken: BrokenCells,
+) -> Result<(Report, Option<PolyMesh>)> {
     let mut options = args.options()?;
     args.add_axes(&mut options, base, surface)?;
     let sun_path = match &args.sun_path {
@@ -356,16 +368,43 @@ pub fn optimize_and_write(
     }
     let bar = IterationBar::new(output, options.solver.max_iterations);
     let start = Instant::now();
-    let result = optimize(base, surface, &options, &mut |info| bar.update(info));
-    bar.finish();
-    let optimized = result?;
-    let seconds = start.elapsed().as_secs_f64();
     let model_surface = Surface::from_mesh(surface.unwrap_or(base))?;
-    let measures = measure(&optimized.honeycomb, &model_surface);
+    let (optimized, measures, base, settled) = match (broken, surface) {
+        (BrokenCells::Drop, Some(surface)) => {
+            // The second try only when the fairness is not the user's choice.
+            let second_try = args.w_fair.is_none();
+            let result =
+                optimize_made_mesh(base, surface, &options, second_try, &mut |attempt, info| {
+                    if info.iteration == 1 && (attempt.solve > 1 || attempt.second_try) {
+                        bar.restart(attempt);
+                    }
+                    bar.update(info)
+                });
+            bar.finish();
+            let made = result?;
+            options = made.options;
+            let s = made.settled;
+            let settled = Some((s.dropped_cells, s.solves, made.second_try));
+            (s.optimized, s.measures, Cow::Owned(s.base), settled)
+        }
+        _ => {
+            let result = optimize(base, surface, &options, &mut |info| bar.update(info));
+            bar.finish();
+            let optimized = result?;
+            let measures = measure(&optimized.honeycomb, &model_surface);
+            (optimized, measures, Cow::Borrowed(base), None)
+        }
+    };
+    let seconds = start.elapsed().as_secs_f64();
     let mut report = Report::new(&optimized, &measures, &options.weights, seconds);
+    if let Some((dropped, solves, second_try)) = settled {
+        report.dropped_boundary_cells = Some(dropped);
+        report.solves = Some(solves);
+        report.second_try = Some(second_try);
+    }
     if let Some(light) = args.light {
         let before = extruded_along_normals(
-            base,
+            &base,
             &optimized.connectivity,
             &model_surface,
             optimized.honeycomb.thickness,
@@ -424,7 +463,11 @@ pub fn optimize_and_write(
             }
         )));
     }
-    Ok(report)
+    let dropped = match base {
+        Cow::Owned(base) if report.dropped_boundary_cells > Some(0) => Some(base),
+        _ => None,
+    };
+    Ok((report, dropped))
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -442,7 +485,14 @@ pub fn run(args: Args) -> Result<()> {
         }
         None => None,
     };
-    optimize_and_write(&base, surface.as_ref(), &args.opts, &args.output).map(|_| ())
+    optimize_and_write(
+        &base,
+        surface.as_ref(),
+        &args.opts,
+        &args.output,
+        BrokenCells::Keep,
+    )
+    .map(|_| ())
 }
 
 /// Prefixes a mesh validation error with the file it is about.

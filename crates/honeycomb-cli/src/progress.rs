@@ -1,5 +1,6 @@
 //! How a long run talks to the terminal: a progress bar, nothing (`--quiet`), or JSON on stdout.
 
+use honeycomb::optimize::Attempt;
 use honeycomb::solve::IterationInfo;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -46,6 +47,19 @@ impl IterationBar {
         if let Some(bar) = &self.bar {
             bar.set_position(info.iteration as u64);
             bar.set_message(format!("residual {:.1e}", info.max_residual));
+        }
+    }
+
+    /// A new solve begins: after broken boundary cells were dropped, or the second try.
+    pub fn restart(&self, attempt: Attempt) {
+        if let Some(bar) = &self.bar {
+            let again = if attempt.second_try {
+                ", second try"
+            } else {
+                ""
+            };
+            bar.set_prefix(format!("optimizing (solve {}{again})", attempt.solve));
+            bar.set_position(0);
         }
     }
 

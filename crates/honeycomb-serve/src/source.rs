@@ -6,6 +6,7 @@ use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::init::{init, CellSize, Flattener, InitOptions};
 use honeycomb::interactive::Workspace;
 use honeycomb::mesh::{read_mesh, PolyMesh};
+use honeycomb::optimize::{optimize_made_mesh, OptimizeOptions};
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
 
@@ -68,7 +69,15 @@ impl Source {
                     Ok(made) => made.base,
                     Err(_) => init(&surface, &options(Flattener::Arap))?.base,
                 };
-                Workspace::new(&base, Some(&surface), thickness)
+                // Solved as `pipeline` solves a mesh it made (broken boundary cells dropped,
+                // a second try without fairness), so that editing starts from a honeycomb.
+                let optimize_options = OptimizeOptions {
+                    thickness,
+                    ..OptimizeOptions::default()
+                };
+                let made =
+                    optimize_made_mesh(&base, &surface, &optimize_options, true, &mut |_, _| {})?;
+                Workspace::from_honeycomb(&made.settled.optimized.honeycomb, Some(&surface))
             }
         }
     }

@@ -36,6 +36,14 @@ pub struct Report {
     /// Shading: the light share before and after, for the design light and a sun path.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shading: Option<ShadingReport>,
+    /// `pipeline`: boundary cells dropped because the solve broke them, the solves of the kept
+    /// try, and whether it is the second (no fairness, minimum edge length).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dropped_boundary_cells: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solves: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub second_try: Option<bool>,
     /// Wall time of the whole optimization (symbolic analysis included).
     pub seconds: f64,
     pub seconds_symbolic: f64,
@@ -92,6 +100,9 @@ impl Report {
                     }
                 }),
             shading: None,
+            dropped_boundary_cells: None,
+            solves: None,
+            second_try: None,
             seconds,
             seconds_symbolic: s.seconds_symbolic,
             seconds_assembly: s.seconds_assembly,

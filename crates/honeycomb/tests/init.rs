@@ -4,7 +4,7 @@ use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::geometry::Vec3;
 use honeycomb::init::{init, Align, BoundaryMode, CellSize, Flattener, InitOptions, Method};
 use honeycomb::mesh::{validate_base_mesh, PolyMesh};
-use honeycomb::optimize::{optimize, OptimizeOptions};
+use honeycomb::optimize::{optimize, optimize_made_mesh, OptimizeOptions};
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
 use std::path::PathBuf;
@@ -430,22 +430,70 @@ fn hex_meshes_on_the_shared_surfaces() {
             }
         }
     }
-    // These become honeycombs (the others stop with omega far above 0.01: see the README).
-    for (file, fairness) in [
-        ("inspired_mesh.obj", 3.0),
-        ("Neumunster.ply", 3.0),
-        ("barrellvault10m.ply", 0.0),
-    ] {
+}
+
+/// `pipeline`'s path on the real surfaces: the plan-view grid (ARAP where S folds over seen from
+/// above), then the solve for a mesh the program made (broken boundary cells dropped, a second
+/// try without fairness). At about 1.5k vertices all of them become honeycombs, and at 8k all
+/// but Yas Island, which stops near omega 0.03 after 100 iterations (printed, not asserted).
+/// camelhead is left out: its flattened cells vary too much in size (cv 0.76).
+#[test]
+fn pipeline_on_the_shared_surfaces() {
+    let Some(data) = shared_data() else {
+        println!("skipping: ../shared/data not found");
+        return;
+    };
+    let files = [
+        "inspired_mesh.obj",
+        "Neumunster.ply",
+        "botanic-garden-bubble.off",
+        "train-station.off",
+        "barrellvault10m.ply",
+        "YasIsland.off",
+        "free_negshell_marc_anet.obj",
+    ];
+    for file in files {
         let s = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
-        let made = init(&s, &options(750)).unwrap();
-        let mut o = OptimizeOptions::default();
-        o.weights.fairness = fairness;
-        let opt = optimize(&made.base, Some(&s), &o, &mut |_| {}).unwrap();
-        let m = measure(&opt.honeycomb, &Surface::from_mesh(&s).unwrap());
-        println!(
-            "{file}: omega {:.2e} delta {:.2e}",
-            m.omega_max_deg, m.delta_max
-        );
-        assert!(m.omega_max_deg < 0.01, "{file}: {}", m.omega_max_deg);
+        for cells in [750, 4000] {
+            let plan_view = InitOptions {
+                flattener: Flattener::Project,
+                ..options(cells)
+            };
+            let made = init(&s, &plan_view)
+                .or_else(|_| init(&s, &options(cells)))
+                .unwrap();
+            let result = optimize_made_mesh(
+                &made.base,
+                &s,
+                &OptimizeOptions::default(),
+                true,
+                &mut |_, _| {},
+            )
+            .unwrap();
+            let settled = &result.settled;
+            let m = &settled.measures;
+            println!(
+                "{file} {cells}: {} V, omega {:.2e}, delta {:.2e}, dropped {} of {} cells in {} \
+                 solves, second try {}",
+                settled.optimized.honeycomb.base.vertices.len(),
+                m.omega_max_deg,
+                m.delta_max,
+                settled.dropped_cells,
+                made.base.faces.len(),
+                settled.solves,
+                result.second_try
+            );
+            assert!(
+                settled.dropped_cells as f64 <= 0.03 * made.base.faces.len() as f64,
+                "{file} {cells}"
+            );
+            if (file, cells) != ("YasIsland.off", 4000) {
+                assert!(
+                    m.omega_max_deg < 0.01,
+                    "{file} {cells}: {}",
+                    m.omega_max_deg
+                );
+            }
+        }
     }
 }

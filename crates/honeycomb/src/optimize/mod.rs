@@ -1,12 +1,18 @@
 //! `optimize`: guided projection of a hexagonal base mesh onto the honeycomb conditions.
 
+mod broken_cells;
 mod frame;
+mod made_mesh;
 mod problem;
 mod quads;
 mod variants;
 mod weights;
 
+pub use broken_cells::{
+    broken_boundary_cells, optimize_dropping_broken_cells, without_cells, Settled,
+};
 pub use frame::Frame;
+pub use made_mesh::{optimize_made_mesh, Attempt, MadeMeshResult};
 pub use problem::{
     boundary_vertices_on_surface_boundary, families, initial_normals, min_edge_family, node_walls,
 };
@@ -52,7 +58,26 @@ pub fn check_thickness(t: f64) -> Result<()> {
     Ok(())
 }
 
+/// The second try's minimum edge length, in mean edge lengths of the base mesh.
+pub const SECOND_TRY_MIN_EDGE: f64 = 0.3;
+/// The second try's iterations at least: without the fairness the iteration is slower.
+pub const SECOND_TRY_ITERATIONS: usize = 100;
+
 impl OptimizeOptions {
+    /// The second try for a base mesh on a real surface that these options left short of a
+    /// honeycomb: no opposite-wall fairness (it holds walls parallel that S shears, and on
+    /// such surfaces keeps omega at degrees), every edge at least 0.3 mean edge lengths
+    /// unless a minimum is set, and at least 100 iterations.
+    pub fn second_try(&self, base: &PolyMesh) -> OptimizeOptions {
+        let mut options = self.clone();
+        options.weights.fairness = 0.0;
+        options
+            .min_edge
+            .get_or_insert(SECOND_TRY_MIN_EDGE * base.mean_edge_length());
+        options.solver.max_iterations = options.solver.max_iterations.max(SECOND_TRY_ITERATIONS);
+        options
+    }
+
     fn validate(&self, num_vertices: usize) -> Result<()> {
         self.weights.validate()?;
         if let Some(t) = self.thickness {

@@ -1,0 +1,226 @@
+//! Boundary cells that a solve breaks, and a solve that drops them.
+//!
+//! A boundary cell is held by fewer walls than an interior one. At a node of valence 2 the
+//! 120-degree condition fixes one angle only, so a cap (a boundary edge between two such nodes)
+//! can slide freely: where S shears a boundary cell, the solve moves the cap's wall onto the
+//! line where its neighbours meet, the cap shrinks to nothing and the walls at its ends settle
+//! mirrored (60 instead of 120 degrees). A minimum edge length cannot hold it, since the
+//! linearized length loses its gradient as the edge vanishes. Likewise the axis of a valence-2
+//! node is just the cross product of its two walls and may swing far from its neighbours', so
+//! that a wall quad crosses itself. Such cells belong to no honeycomb near the start: they are
+//! dropped and the solve starts again from the base mesh without them.
+
+use super::{optimize, OptimizeOptions, Optimized};
+use crate::error::Result;
+use crate::mesh::{Connectivity, PolyMesh};
+use crate::solve::IterationInfo;
+use crate::structure::{measure, Honeycomb, Measures};
+use crate::surface::Surface;
+
+/// A cap shorter than this share of the mean edge length has collapsed.
+pub const COLLAPSED_CAP: f64 = 0.1;
+/// A node this far from 120 degrees (degrees) is broken, not merely unconverged.
+pub const BROKEN_NODE_DEG: f64 = 5.0;
+/// A wall quad this far from planar (diagonal distance over mean edge) crosses itself.
+pub const BROKEN_WALL: f64 = 0.02;
+
+/// Cells are dropped this many times at most.
+const MAX_DROPS: usize = 10;
+/// Iterations of a probe solve.
+const PROBE_ITERATIONS: usize = 20;
+/// At most this share of the cells is dropped: beyond it the mesh would be eaten away from its
+/// boundary rather than trimmed, and the solve is not the one to keep.
+pub const MAX_DROPPED_SHARE: f64 = 0.03;
+
+/// The cells with a boundary edge that hold a collapsed cap, a broken node or a broken wall
+/// (sorted). Interior cells are never listed: dropping them would open holes.
+pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -> Vec<usize> {
+    let limit = COLLAPSED_CAP * m.mean_edge_length;
+    let length = |e: usize| {
+        let [a, b] = conn.edges[e];
+        (h.base.vertices[a] - h.base.vertices[b]).norm()
+    };
+    let broken_edge = |e: usize| {
+        let [a, b] = conn.edges[e];
+        let cap = conn.is_boundary_edge(e) && conn.valence(a) == 2 && conn.valence(b) == 2;
+        (cap && length(e) < limit)
+            || m.delta_per_wall[e] > BROKEN_WALL
+            || m.omega_per_node[a] > BROKEN_NODE_DEG
+            || m.omega_per_node[b] > BROKEN_NODE_DEG
+    };
+    (0..h.base.faces.len())
+        .filter(|&f| {
+            let edges = &conn.face_edges[f];
+            edges.iter().any(|&e| conn.is_boundary_edge(e)) && edges.iter().any(|&e| broken_edge(e))
+        })
+        .collect()
+}
+
+/// `mesh` without the faces `drop` (sorted) and the vertices no other face uses; the order of
+/// the rest is kept. In a trivalent mesh every remaining vertex keeps valence 2 or 3.
+pub fn without_cells(mesh: &PolyMesh, drop: &[usize]) -> PolyMesh {
+    let kept: Vec<&Vec<usize>> = (0..mesh.faces.len())
+        .filter(|f| drop.binary_search(f).is_err())
+        .map(|f| &mesh.faces[f])
+        .collect();
+    let mut used = vec![false; mesh.vertices.len()];
+    for &v in kept.iter().copied().flatten() {
+        used[v] = true;
+    }
+    let mut index = vec![usize::MAX; mesh.vertices.len()];
+    let mut vertices = Vec::new();
+    for v in (0..mesh.vertices.len()).filter(|&v| used[v]) {
+        index[v] = vertices.len();
+        vertices.push(mesh.vertices[v]);
+    }
+    let faces = kept
+        .into_iter()
+        .map(|f| f.iter().map(|&v| index[v]).collect())
+        .collect();
+    PolyMesh::new(vertices, faces)
+}
+
+/// What [`optimize_dropping_broken_cells`] gives: the last solve, the base mesh it started
+/// from, its measures, and how many cells were dropped in how many solves.
+pub struct Settled {
+    pub optimized: Optimized,
+    pub base: PolyMesh,
+    pub measures: Measures,
+    pub dropped_cells: usize,
+    pub solves: usize,
+}
+
+/// [`optimize`], and while the result has broken boundary cells (at most six times more, and
+/// while at most 3% of the cells are gone): the same from `base` without them. Meant for base meshes the program made itself (`pipeline`),
+/// whose boundary cells are a choice of the trimming, not the designer's. `progress` sees the
+/// solve's number (from 1) with every iteration.
+pub fn optimize_dropping_broken_cells(
+    base: &PolyMesh,
+    surface: &PolyMesh,
+    options: &OptimizeOptions,
+    progress: &mut dyn FnMut(usize, &IterationInfo),
+) -> Result<Settled> {
+    let model_surface = Surface::from_mesh(surface)?;
+    let allowed = (MAX_DROPPED_SHARE * base.faces.len() as f64).floor() as usize;
+    let mut probe = options.clone();
+    probe.solver.max_iterations = options.solver.max_iterations.min(PROBE_ITERATIONS);
+    let mut base = base.clone();
+    let (mut dropped_cells, mut drops) = (0, 0);
+    // Cells break in the first few steps: a short probe finds them without paying for a whole
+    // solve; the whole solve follows once a probe is clean (and can still break some).
+    let mut probing = probe.solver.max_iterations < options.solver.max_iterations;
+    for solve in 1.. {
+        let this = if probing { &probe } else { options };
+        let optimized = optimize(&base, Some(surface), this, &mut |i| progress(solve, i))?;
+        let measures = measure(&optimized.honeycomb, &model_surface);
+        let broken =
+            broken_boundary_cells(&optimized.honeycomb, &optimized.connectivity, &measures);
+        let finished = !probing || optimized.solve.converged;
+        if broken.is_empty() && !finished {
+            probing = false;
+            continue;
+        }
+        let out_of_drops = drops == MAX_DROPS || dropped_cells + broken.len() > allowed;
+        if broken.is_empty() || out_of_drops {
+            if probing && !finished {
+                // Out of drops: the whole solve on what is left, for the record.
+                probing = false;
+                continue;
+            }
+            return Ok(Settled {
+                optimized,
+                base,
+                measures,
+                dropped_cells,
+                solves: solve,
+            });
+        }
+        dropped_cells += broken.len();
+        drops += 1;
+        // From the start again: a solve that broke some cells has bent their neighbours too
+        // (starting from where it ended breaks more cells in every round).
+        base = without_cells(&base, &broken);
+        probing = probe.solver.max_iterations < options.solver.max_iterations;
+    }
+    unreachable!("the loop returns")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::hex_disk;
+    use crate::geometry::Vec3;
+    use crate::mesh::validate_base_mesh;
+
+    /// A plane hex mesh with vertical axes (a honeycomb wherever its cells are regular), its
+    /// adjacency and measures.
+    fn measured(mesh: &PolyMesh) -> (Honeycomb, Connectivity, Measures) {
+        let conn = validate_base_mesh(mesh).unwrap();
+        let axes = vec![Vec3::new(0.0, 0.0, 1.0); mesh.vertices.len()];
+        let h = Honeycomb::new(mesh.clone(), &conn, axes, 0.3);
+        let m = measure(&h, &Surface::from_mesh(mesh).unwrap());
+        (h, conn, m)
+    }
+
+    fn caps(conn: &Connectivity) -> Vec<usize> {
+        (0..conn.num_edges())
+            .filter(|&e| {
+                let [a, b] = conn.edges[e];
+                conn.is_boundary_edge(e) && conn.valence(a) == 2 && conn.valence(b) == 2
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_regular_hex_disk_has_no_broken_cells() {
+        let mesh = hex_disk(5.0);
+        let (h, conn, m) = measured(&mesh);
+        assert!(m.omega_max_deg < 1e-9, "{}", m.omega_max_deg);
+        assert!(!caps(&conn).is_empty(), "the disk should have caps to test");
+        assert!(broken_boundary_cells(&h, &conn, &m).is_empty());
+    }
+
+    #[test]
+    fn a_collapsed_cap_breaks_its_boundary_cell_and_no_interior_one() {
+        let mut mesh = hex_disk(5.0);
+        let conn = validate_base_mesh(&mesh).unwrap();
+        let cap = caps(&conn)[0];
+        let [a, b] = conn.edges[cap];
+        let middle = (mesh.vertices[a] + mesh.vertices[b]) * 0.5;
+        let along = (mesh.vertices[b] - mesh.vertices[a]) * 0.01;
+        mesh.vertices[a] = middle - along;
+        mesh.vertices[b] = middle + along;
+        let (h, conn, m) = measured(&mesh);
+        let broken = broken_boundary_cells(&h, &conn, &m);
+        let cell = conn.edge_faces[cap][0].unwrap();
+        assert!(broken.contains(&cell), "{broken:?} lacks cell {cell}");
+        for &f in &broken {
+            assert!(
+                conn.face_edges[f].iter().any(|&e| conn.is_boundary_edge(e)),
+                "interior cell {f} listed"
+            );
+        }
+        assert!(broken.len() < 4, "{broken:?}");
+    }
+
+    #[test]
+    fn dropping_boundary_cells_leaves_a_valid_base_mesh() {
+        let mesh = hex_disk(5.0);
+        let conn = validate_base_mesh(&mesh).unwrap();
+        let mut drop: Vec<usize> = caps(&conn)
+            .iter()
+            .filter_map(|&e| conn.edge_faces[e][0])
+            .collect();
+        drop.sort_unstable();
+        drop.dedup();
+        let rest = without_cells(&mesh, &drop);
+        assert_eq!(rest.faces.len(), mesh.faces.len() - drop.len());
+        let rest_conn = validate_base_mesh(&rest).unwrap();
+        // Every vertex still lies in a kept cell and keeps valence 2 or 3.
+        assert!((0..rest.vertices.len()).all(|v| (2..=3).contains(&rest_conn.valence(v))));
+        assert!(rest.vertices.len() < mesh.vertices.len());
+        // The kept cells are the same polygons.
+        let (_, _, m) = measured(&rest);
+        assert!(m.omega_max_deg < 1e-9);
+    }
+}
