@@ -35,7 +35,7 @@ pub struct Args {
     /// quads, shading, prescribed axes, minimum edge length) on its test subject.
     #[arg(long)]
     pub variants: bool,
-    /// Instead of the sizes: `init` (flatten, ARAP) on a 40k-triangle roof, for 2000 and
+    /// Instead of the sizes: `init` (flatten with ARAP, and field) on a 40k-triangle roof, for 2000 and
     /// 100000 cells.
     #[arg(long, conflicts_with = "variants")]
     pub init: bool,
@@ -135,7 +135,7 @@ pub fn all_iterations(iterations: usize) -> SolverOptions {
 /// makes 2000 cells from such a surface in about 0.85 s).
 fn run_init(json: bool) -> Result<()> {
     use honeycomb::generate::HeightField;
-    use honeycomb::init::{init, CellSize, InitOptions};
+    use honeycomb::init::{init, CellSize, InitOptions, Method};
     let surface = HeightField {
         shape: Shape::Roof,
         d: 50.0,
@@ -143,12 +143,20 @@ fn run_init(json: bool) -> Result<()> {
     .triangulate(141);
     if !json {
         println!(
-            "{:>10} {:>8} {:>8} {:>8} {:>10} {:>8} {:>8}",
-            "triangles", "cells", "vertices", "hex%", "edge cv", "T (s)", "peakMiB"
+            "{:>8} {:>10} {:>8} {:>8} {:>8} {:>10} {:>8} {:>8}",
+            "method", "triangles", "cells", "vertices", "hex%", "edge cv", "T (s)", "peakMiB"
         );
     }
-    for cells in [2000, 100_000] {
-        let options = InitOptions::new(CellSize::Cells(cells));
+    // Peak memory is the process's so far: each row's own peak only where it exceeds the
+    // rows before it.
+    let runs = [Method::Flatten, Method::Field]
+        .into_iter()
+        .flat_map(|m| [2000, 100_000].map(|cells| (m, cells)));
+    for (method, cells) in runs {
+        let options = InitOptions {
+            method,
+            ..InitOptions::new(CellSize::Cells(cells))
+        };
         let start = Instant::now();
         let made = init(&surface, &options)?;
         let seconds = start.elapsed().as_secs_f64();
@@ -158,14 +166,16 @@ fn run_init(json: bool) -> Result<()> {
             println!(
                 "{}",
                 serde_json::json!({
-                    "triangles": surface.faces.len(), "cells_asked": cells, "cells": r.cells,
+                    "method": method, "triangles": surface.faces.len(), "cells_asked": cells,
+                    "cells": r.cells,
                     "vertices": r.vertices, "interior_hexagon_share": r.interior_hexagon_share,
                     "edge_length_cv": r.edge_length_cv, "seconds": seconds, "peak_mib": peak_mib,
                 })
             );
         } else {
             println!(
-                "{:>10} {:>8} {:>8} {:>7.1}% {:>10.4} {:>8.3} {:>8.0}",
+                "{:>8} {:>10} {:>8} {:>8} {:>7.1}% {:>10.4} {:>8.3} {:>8.0}",
+                format!("{method:?}").to_lowercase(),
                 surface.faces.len(),
                 r.cells,
                 r.vertices,

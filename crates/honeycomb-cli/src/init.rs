@@ -22,8 +22,9 @@ pub struct InitArgs {
     /// Cell edge length in model units.
     #[arg(long, allow_negative_numbers = true)]
     pub edge_length: Option<f64>,
-    /// `flatten`: conformal flattening and a regular hex grid (disk-like surfaces, holes
-    /// allowed). `field` (field-aligned remeshing) is not built yet.
+    /// `flatten`: a flattening and a regular hex grid (disk-like, gently curved surfaces, holes
+    /// allowed). `field`: field-aligned remeshing (any surface, strongly curved ones too; the
+    /// hex edges follow a smooth 6-fold direction field; boundary cells trimmed).
     #[arg(long, default_value = "flatten")]
     pub method: Method,
     /// `boundary`: hex edges follow the surface's boundary; `none`; or an OBJ file of
@@ -38,7 +39,8 @@ pub struct InitArgs {
     /// [default: arap; pipeline tries project, then arap].
     #[arg(long)]
     pub flatten: Option<Flattener>,
-    /// Shifts the grid by a pseudo-random offset; the same seed gives the same mesh.
+    /// Shifts the grid by a pseudo-random offset (flatten) or seeds the fields (field); the same
+    /// seed gives the same mesh.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
 }
@@ -122,17 +124,22 @@ fn print_report(made: &Initialized, output: Output, written: &Path) -> Result<()
             serde_json::to_string_pretty(r).map_err(|e| Error::Parameter(e.to_string()))?
         ),
         Output::Human => {
+            let how = match &r.flat {
+                Some(f) => format!(
+                    "flattening: angle distortion {:.3} avg, length scale cv {:.3}",
+                    f.flattening.conformal_avg, f.flattening.length_scale_cv
+                ),
+                None => "field-aligned".to_string(),
+            };
             println!(
                 "{} cells ({} interior, {:.1}% hexagons), {} vertices; edge length {:.4} (cv \
-                 {:.3}); flattening: angle distortion {:.3} avg, length scale cv {:.3}; {:.2} s",
+                 {:.3}); {how}; {:.2} s",
                 r.cells,
                 r.interior_cells,
                 100.0 * r.interior_hexagon_share,
                 r.vertices,
                 r.edge_length_mean,
                 r.edge_length_cv,
-                r.flattening.conformal_avg,
-                r.flattening.length_scale_cv,
                 r.seconds
             );
             println!("wrote {}", written.display());
@@ -198,9 +205,10 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     }
     // Without --flatten: the plan-view grid first (a honeycomb from the start wherever S does
     // not fold over seen from above), then the ARAP one.
-    let candidates = match args.init.flatten {
-        Some(f) => vec![f],
-        None => vec![Flattener::Project, Flattener::Arap],
+    let candidates = match (args.init.method, args.init.flatten) {
+        (Method::Field, _) => vec![Flattener::default()],
+        (_, Some(f)) => vec![f],
+        (_, None) => vec![Flattener::Project, Flattener::Arap],
     };
     for (k, &flattener) in candidates.iter().enumerate() {
         let last = k + 1 == candidates.len();

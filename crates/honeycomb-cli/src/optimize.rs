@@ -12,7 +12,7 @@ use honeycomb::optimize::{
 };
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
-use honeycomb::structure::measure;
+use honeycomb::structure::{measure, thickest_uncrossed};
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result, Vec3};
 use std::borrow::Cow;
@@ -446,7 +446,7 @@ pub fn optimize_and_write(
         return Err(Error::Solver(format!(
             "the result is not a honeycomb after {} iterations: omega_max {:.3} deg, \
              delta_max {:.1e} (tolerance {} deg, {:.0e}); the outputs in {} are for inspection. \
-             More --iterations or a larger --eps may help{}",
+             More --iterations or a larger --eps may help{}{}",
             report.iterations,
             report.measures.omega_max_deg,
             report.measures.delta_max,
@@ -460,6 +460,24 @@ pub fn optimize_and_write(
                     "; {} cells of the base mesh are not convex",
                     nonconvex.len()
                 )
+            },
+            match report.measures.nonconvex_walls {
+                0 => String::new(),
+                n => {
+                    let limit = thickest_uncrossed(&optimized.honeycomb);
+                    format!(
+                        "; {n} wall quads are not convex at thickness {:.4} (the node axes at \
+                         their ends lean together or apart across the wall){}",
+                        report.thickness,
+                        if limit < report.thickness {
+                            format!(
+                                ": --thickness below {limit:.4} uncrosses those leaning together"
+                            )
+                        } else {
+                            String::new()
+                        }
+                    )
+                }
             }
         )));
     }

@@ -215,8 +215,8 @@ fn bad_surfaces_and_options_are_named() {
     init_fails(
         &tmp,
         &surface,
-        &["--cells", "100", "--method", "field"],
-        &["not built yet"],
+        &["--cells", "100", "--method", "field", "--boundary", "keep"],
+        &["--boundary keep", "--method field"],
     );
     init_fails(
         &tmp,
@@ -383,4 +383,32 @@ fn pipeline_drops_broken_boundary_cells_and_tries_again() {
     assert_eq!(number(&report["weights"], "fairness"), 0.0, "{report}");
     assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
     assert!(stderr(&out).contains("second try"), "{}", stderr(&out));
+}
+
+/// `--method field`: the field-aligned mesh on a saddle, reported as such, becomes a honeycomb
+/// through pipeline.
+#[test]
+fn pipeline_with_the_field_method() {
+    let tmp = TempDir::new("pipeline_field");
+    let saddle = tmp.write("saddle.obj", &wavy_disk(|x, y| x * x - y * y, 1.0, 0.0));
+    let dir = tmp.join("out");
+    let out = run([
+        "pipeline",
+        saddle.to_str().unwrap(),
+        "--cells",
+        "300",
+        "--method",
+        "field",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let init = read_json(&dir, "init.json");
+    assert_eq!(init["method"], "field", "{init}");
+    assert!(init.get("flattener").is_none(), "{init}");
+    assert!(number(&init, "interior_hexagon_share") >= 0.95, "{init}");
+    assert!(number(&init, "edge_length_cv") <= 0.12, "{init}");
+    let report = read_json(&dir, "report.json");
+    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
+    assert_eq!(number(&report, "nonconvex_walls"), 0.0, "{report}");
 }

@@ -52,7 +52,7 @@ fn hex_meshes_on_generated_surfaces() {
             (500..=720).contains(&cells),
             "{shape:?}: {cells} cells for 700 asked"
         );
-        assert!(made.report.flattening.conformal_avg < 1.1);
+        assert!(made.report.flat.as_ref().unwrap().flattening.conformal_avg < 1.1);
     }
 }
 
@@ -198,7 +198,7 @@ fn strokes_turn_the_grid() {
         edges.len()
     );
     // A flat surface is no problem for flattening: no distortion at all.
-    assert!(made.report.flattening.conformal_max < 1.0 + 1e-6);
+    assert!(made.report.flat.as_ref().unwrap().flattening.conformal_max < 1.0 + 1e-6);
     assert!(made.report.edge_length_cv < 1e-6);
 }
 
@@ -259,15 +259,16 @@ fn unusable_surfaces_and_sizes_are_named() {
         },
     );
     assert!(e.contains("at most"), "{e}");
-    // The field method is named as not built rather than silently replaced.
+    // The field method trims; closing cells is the flattening's.
     let e = error(
         &s,
         &InitOptions {
             method: Method::Field,
+            boundary: BoundaryMode::Keep,
             ..options(100)
         },
     );
-    assert!(e.contains("not built yet"), "{e}");
+    assert!(e.contains("--boundary keep"), "{e}");
 }
 
 /// A grid of unit squares over [0, n]^2 without the squares `hole` (column, row) lists.
@@ -420,7 +421,7 @@ fn hex_meshes_on_the_shared_surfaces() {
                 r.cells,
                 r.interior_hexagon_share,
                 r.edge_length_cv,
-                r.flattener,
+                r.flat.as_ref().map(|f| f.flattener),
                 r.seconds
             );
             if file == "camelhead.off" {
@@ -495,5 +496,36 @@ fn pipeline_on_the_shared_surfaces() {
                 );
             }
         }
+    }
+}
+
+/// `init` with the field method: a valid hex mesh on S with nearly all interior cells
+/// hexagons of nearly one size, reported without a flattening.
+#[test]
+fn the_field_method_through_init() {
+    for shape in [Shape::Dome, Shape::Saddle] {
+        let s = surface(shape);
+        let made = init(
+            &s,
+            &InitOptions {
+                method: Method::Field,
+                ..options(750)
+            },
+        )
+        .unwrap();
+        assert_good(&made.base, &s, &made.report, &format!("field {shape:?}"));
+        assert!(made.report.flat.is_none());
+        assert_eq!(made.report.method, Method::Field);
+        let json = serde_json::to_value(&made.report).unwrap();
+        assert!(json.get("flattener").is_none(), "{json}");
+        let again = init(
+            &s,
+            &InitOptions {
+                method: Method::Field,
+                ..options(750)
+            },
+        )
+        .unwrap();
+        assert_eq!(again.base, made.base, "not deterministic");
     }
 }

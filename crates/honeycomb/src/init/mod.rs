@@ -6,9 +6,14 @@
 //! cells outside it are dropped (or, with `BoundaryMode::Keep`, closed against its boundary),
 //! and the corners are mapped back onto S through the triangles that contain them, so every
 //! vertex lies on S exactly. Cell sizes on S inherit the flattening's scale variation, which
-//! the report gives (the paper's Figure 6b). The field-aligned method is not built yet.
+//! the report gives (the paper's Figure 6b).
+//!
+//! Method `field`, for any surface (strongly curved ones too; no flattening): a field-aligned
+//! remesher in the manner of Instant Field-Aligned Meshes (see [`field`]) whose triangular
+//! lattice is dualized into hexagons on S; cells S's boundary cuts are dropped.
 
 mod arap;
+pub mod field;
 mod flatten;
 mod lattice;
 mod locate;
@@ -110,8 +115,9 @@ pub const MAX_CELLS: usize = 2_000_000;
 #[derive(Clone, Debug, Serialize)]
 pub struct InitReport {
     pub method: Method,
-    /// The flattening used (LSCM when ARAP was asked for but turned triangles over).
-    pub flattener: Flattener,
+    /// Method `flatten`: the flattening, as top-level keys.
+    #[serde(flatten)]
+    pub flat: Option<FlatteningReport>,
     pub boundary: BoundaryMode,
     pub vertices: usize,
     pub edges: usize,
@@ -129,13 +135,20 @@ pub struct InitReport {
     /// Largest distance of a vertex to S over the mean edge length.
     pub distance_to_surface_max: f64,
     pub valence_histogram: BTreeMap<usize, usize>,
+    pub seconds: f64,
+}
+
+/// What method `flatten` reports about its flattening.
+#[derive(Clone, Debug, Serialize)]
+pub struct FlatteningReport {
+    /// The flattening used (LSCM when ARAP was asked for but turned triangles over).
+    pub flattener: Flattener,
     /// The lattice's rotation in the flattened plane (degrees).
     pub lattice_angle_deg: f64,
     /// How far the flattening is from an isometry.
     pub flattening: Distortion,
     /// Triangles of S that the flattening turned over (0 for a good flattening).
     pub flipped_triangles: usize,
-    pub seconds: f64,
 }
 
 pub struct Initialized {
@@ -174,19 +187,15 @@ impl InitOptions {
 pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     let start = Instant::now();
     options.validate()?;
-    if options.method == Method::Field {
-        return Err(Error::Parameter(
-            "--method field (field-aligned remeshing) is not built yet; --method flatten \
-             covers disk-like surfaces, holes included"
-                .into(),
-        ));
-    }
     let conn = validate_surface_mesh(surface)?;
     let components = face_components(surface, &conn);
     if components > 1 {
         return Err(Error::Mesh(format!(
             "the surface has {components} separate pieces; init needs one (split the file)"
         )));
+    }
+    if options.method == Method::Field {
+        return init_field(surface, options, start);
     }
     let (vertices, triangles) = surface.star_triangulated();
     let flat = flatten(&vertices, &triangles, options.flattener)?;
@@ -287,12 +296,45 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
         surface,
         options,
         edge,
-        angle,
-        flat.flattener,
-        flat.distortion,
-        flat.flipped,
+        Some(FlatteningReport {
+            flattener: flat.flattener,
+            lattice_angle_deg: angle.to_degrees(),
+            flattening: flat.distortion,
+            flipped_triangles: flat.flipped,
+        }),
         start,
     )?;
+    Ok(Initialized { base, report })
+}
+
+/// Method `field`: the field-aligned remesher on S itself; cells S's boundary cuts are dropped.
+fn init_field(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Initialized> {
+    if options.boundary == BoundaryMode::Keep {
+        return Err(Error::Parameter(
+            "--boundary keep closes cells in a flattening; --method field trims them (use \
+             --method flatten to keep them)"
+                .into(),
+        ));
+    }
+    let (vertices, triangles) = surface.star_triangulated();
+    let area: f64 = triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| vertices[v]);
+            0.5 * (b - a).cross(c - a).norm()
+        })
+        .sum();
+    let edge = match options.size {
+        CellSize::Cells(n) => (area / (n as f64 * 1.5 * 3f64.sqrt())).sqrt(),
+        CellSize::EdgeLength(l) => l,
+    };
+    let strokes: &[Vec<Vec3>] = match &options.align {
+        Align::Strokes(lines) => lines,
+        Align::Boundary | Align::None => &[],
+    };
+    let base = field::field_hex_mesh(surface, edge, strokes, options.seed)?;
+    let conn = validate_base_mesh(&base)?;
+    let report = report(&base, &conn, surface, options, edge, None, start)?;
     Ok(Initialized { base, report })
 }
 
@@ -595,10 +637,7 @@ fn report(
     surface: &PolyMesh,
     options: &InitOptions,
     edge: f64,
-    angle: f64,
-    flattener: Flattener,
-    flattening: Distortion,
-    flipped_triangles: usize,
+    flat: Option<FlatteningReport>,
     start: Instant,
 ) -> Result<InitReport> {
     let mut cells_by_sides = BTreeMap::new();
@@ -634,7 +673,7 @@ fn report(
     }
     Ok(InitReport {
         method: options.method,
-        flattener,
+        flat,
         boundary: options.boundary,
         vertices: base.vertices.len(),
         edges: conn.num_edges(),
@@ -651,9 +690,6 @@ fn report(
         edge_length_cv: var.sqrt() / mean,
         distance_to_surface_max: distance / mean,
         valence_histogram,
-        lattice_angle_deg: angle.to_degrees(),
-        flattening,
-        flipped_triangles,
         seconds: start.elapsed().as_secs_f64(),
     })
 }

@@ -15,6 +15,11 @@ pub struct Measures {
     /// Wall planarity: distance of a wall quad's diagonals over its mean edge length.
     pub delta_max: f64,
     pub delta_avg: f64,
+    /// Wall quads that are not convex: crossed (M''s edge runs against M's, because the node
+    /// axes at its ends lean together by more than the edge is long over the thickness; a
+    /// thinner structure uncrosses it) or folded (the axes lean to opposite sides of the edge).
+    /// Such a quad may lie in a plane and still read far from planar in delta.
+    pub nonconvex_walls: usize,
     /// Distance of a vertex of M to S over the mean edge length of M.
     pub closeness_max: f64,
     pub closeness_avg: f64,
@@ -71,6 +76,31 @@ pub fn node_angles(h: &Honeycomb, v: usize, neighbours: &[usize]) -> Vec<f64> {
     }
 }
 
+/// The largest constant thickness at which no wall quad of `h` crosses itself (infinite when
+/// no two axes lean together): the M' edge of wall ab is `(v_b - v_a) + t (a_b - a_a)`, which
+/// turns against `v_b - v_a` from `t = |v_b - v_a|^2 / -((v_b - v_a) . (a_b - a_a))` on.
+pub fn thickest_uncrossed(h: &Honeycomb) -> f64 {
+    h.edges
+        .iter()
+        .map(|&[a, b]| {
+            let edge = h.base.vertices[b] - h.base.vertices[a];
+            let lean = -edge.dot(h.axes[b] - h.axes[a]);
+            if lean > 0.0 {
+                edge.norm_squared() / lean
+            } else {
+                f64::INFINITY
+            }
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Whether a (nearly planar) quad is convex: it turns the same way at all four corners.
+pub fn is_convex(p: [Vec3; 4]) -> bool {
+    let corner = |k: usize| (p[(k + 1) % 4] - p[k]).cross(p[(k + 3) % 4] - p[k]);
+    let first = corner(0);
+    (1..4).all(|k| corner(k).dot(first) > 0.0)
+}
+
 /// Planarity of a quad: distance between its diagonals over its mean edge length.
 pub fn quad_planarity([p0, p1, p2, p3]: [Vec3; 4]) -> f64 {
     let mean = ((p1 - p0).norm() + (p2 - p1).norm() + (p3 - p2).norm() + (p0 - p3).norm()) / 4.0;
@@ -106,6 +136,9 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
     let delta_per_wall: Vec<f64> = (0..h.edges.len())
         .map(|e| quad_planarity(h.wall(e)))
         .collect();
+    let nonconvex_walls = (0..h.edges.len())
+        .filter(|&e| !is_convex(h.wall(e)))
+        .count();
     let mean_edge_length = h
         .edges
         .iter()
@@ -130,6 +163,7 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         omega_avg_deg: omega_sum / omega_count.max(1) as f64,
         delta_max: max(&delta_per_wall),
         delta_avg: avg(&delta_per_wall),
+        nonconvex_walls,
         closeness_max: max(&closeness),
         closeness_avg: avg(&closeness),
         mean_edge_length,
@@ -137,5 +171,68 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         valence_histogram,
         omega_per_node,
         delta_per_wall,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::hex_disk;
+    use crate::mesh::validate_base_mesh;
+
+    /// Two neighbouring axes leaning towards each other by more than their edge is long over
+    /// the thickness cross that one wall, and only it; leaning to opposite sides folds it.
+    #[test]
+    fn axes_leaning_together_cross_their_wall() {
+        let mesh = hex_disk(4.0);
+        let conn = validate_base_mesh(&mesh).unwrap();
+        let surface = Surface::from_mesh(&mesh).unwrap();
+        let up = Vec3::new(0.0, 0.0, 1.0);
+        let upright = Honeycomb::new(mesh.clone(), &conn, vec![up; mesh.vertices.len()], 2.0);
+        assert_eq!(measure(&upright, &surface).nonconvex_walls, 0);
+
+        let e = (0..conn.num_edges())
+            .find(|&e| !conn.is_boundary_edge(e))
+            .unwrap();
+        let [a, b] = conn.edges[e];
+        let towards = (mesh.vertices[b] - mesh.vertices[a]).normalized();
+        let mut axes = vec![up; mesh.vertices.len()];
+        axes[a] = (up + towards).normalized();
+        axes[b] = (up - towards).normalized();
+        // Each tip moves 2 * 0.71 towards the other: more than the unit edge between them.
+        let leaning = Honeycomb::new(mesh.clone(), &conn, axes, 2.0);
+        assert_eq!(measure(&leaning, &surface).nonconvex_walls, 1);
+        let thin = Honeycomb::new(mesh.clone(), &conn, leaning_axes(&leaning), 0.3);
+        assert_eq!(measure(&thin, &surface).nonconvex_walls, 0);
+        // Crossing starts at 1 / (2 * 0.707...): just below it the wall is whole, above not.
+        let limit = thickest_uncrossed(&leaning);
+        assert!((limit - 0.5f64.sqrt()).abs() < 1e-12, "{limit}");
+        for (t, crossed) in [(0.99 * limit, 0), (1.01 * limit, 1)] {
+            let h = Honeycomb::new(mesh.clone(), &conn, leaning_axes(&leaning), t);
+            assert_eq!(
+                measure(&h, &surface).nonconvex_walls,
+                crossed,
+                "thickness {t}"
+            );
+        }
+        assert!(thickest_uncrossed(&upright).is_infinite());
+        // Axes leaning to opposite sides of the edge, across the wall: folded at any thickness.
+        let across = up.cross(towards);
+        let mut axes = vec![up; mesh.vertices.len()];
+        axes[a] = (across + up * 0.2).normalized();
+        axes[b] = (-across + up * 0.2).normalized();
+        for t in [0.05, 0.3] {
+            let folded = Honeycomb::new(mesh.clone(), &conn, axes.clone(), t);
+            assert!(
+                measure(&folded, &surface).nonconvex_walls >= 1,
+                "thickness {t}"
+            );
+        }
+    }
+
+    fn leaning_axes(h: &Honeycomb) -> Vec<Vec3> {
+        (0..h.base.vertices.len())
+            .map(|v| (h.offset.vertices[v] - h.base.vertices[v]).normalized())
+            .collect()
     }
 }
