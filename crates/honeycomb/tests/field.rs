@@ -199,7 +199,6 @@ struct Figures {
     interior: usize,
     hexagon_share: f64,
     cv: f64,
-    seconds: f64,
 }
 
 /// Meshes `s` for about `vertices` hex vertices and measures the result, asserting what every
@@ -255,7 +254,6 @@ fn mesh_and_measure(s: &PolyMesh, vertices: usize, seed: u64, what: &str) -> (Po
         interior: interior.len(),
         hexagon_share: hexagons as f64 / interior.len().max(1) as f64,
         cv: var.sqrt() / mean,
-        seconds,
     };
     let mut sides = BTreeMap::new();
     for f in &hex.faces {
