@@ -14,7 +14,7 @@ use super::{optimize, OptimizeOptions, Optimized};
 use crate::error::Result;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::IterationInfo;
-use crate::structure::{measure, Honeycomb, Measures};
+use crate::structure::{is_convex, measure, Honeycomb, Measures};
 use crate::surface::Surface;
 
 /// A cap shorter than this share of the mean edge length has collapsed.
@@ -33,7 +33,7 @@ const PROBE_ITERATIONS: usize = 20;
 pub const MAX_DROPPED_SHARE: f64 = 0.03;
 
 /// The cells with a boundary edge that hold a collapsed cap, a broken node or a broken wall
-/// (sorted). Interior cells are never listed: dropping them would open holes.
+/// (far from planar, or not convex) (sorted). Interior cells are never listed: dropping them would open holes.
 pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -> Vec<usize> {
     let limit = COLLAPSED_CAP * m.mean_edge_length;
     let length = |e: usize| {
@@ -45,6 +45,7 @@ pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -
         let cap = conn.is_boundary_edge(e) && conn.valence(a) == 2 && conn.valence(b) == 2;
         (cap && length(e) < limit)
             || m.delta_per_wall[e] > BROKEN_WALL
+            || !is_convex(h.wall(e))
             || m.omega_per_node[a] > BROKEN_NODE_DEG
             || m.omega_per_node[b] > BROKEN_NODE_DEG
     };

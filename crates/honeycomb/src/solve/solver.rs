@@ -81,8 +81,6 @@ const GUIDE_FADE: f64 = 0.3;
 const EPS_DECAY: f64 = 0.1;
 /// Regularization growth after a step that raised the energy or had to be halved.
 const EPS_GROWTH: f64 = 10.0;
-/// A step that raised the energy by less than this factor keeps the regularization.
-const EPS_KEEP: f64 = 2.0;
 
 /// Step control halves a step only when it multiplies the weighted residual energy by more
 /// than this: a guard against divergence. Demanding a monotone decrease stalls the iteration,
@@ -244,8 +242,6 @@ impl<'a> GuidedProjection<'a> {
         // Trust the linearization more only after a step that paid off.
         state.eps = if halvings == 0 && trial_energy <= energy {
             (eps * EPS_DECAY).max(opts.eps_min)
-        } else if halvings == 0 && trial_energy <= energy * EPS_KEEP {
-            eps
         } else {
             (eps * EPS_GROWTH).min(eps0)
         };
