@@ -386,6 +386,17 @@ fn projection_looks_from_where_the_whole_surface_is_seen() {
     assert!(made.report.distance_to_surface_max < 1e-9);
 }
 
+/// The design surfaces of ../shared/data (triangle and quad meshes) that a flattening suits.
+const FLATTENABLE: [&str; 7] = [
+    "inspired_mesh.obj",
+    "Neumunster.ply",
+    "botanic-garden-bubble.off",
+    "train-station.off",
+    "barrellvault10m.ply",
+    "YasIsland.off",
+    "free_negshell_marc_anet.obj",
+];
+
 fn shared_data() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
     dir.is_dir().then_some(dir)
@@ -400,17 +411,7 @@ fn hex_meshes_on_the_shared_surfaces() {
         println!("skipping: ../shared/data not found");
         return;
     };
-    let files = [
-        "inspired_mesh.obj",
-        "Neumunster.ply",
-        "botanic-garden-bubble.off",
-        "train-station.off",
-        "barrellvault10m.ply",
-        "YasIsland.off",
-        "free_negshell_marc_anet.obj",
-        "camelhead.off",
-    ];
-    for file in files {
+    for file in FLATTENABLE.into_iter().chain(["camelhead.off"]) {
         let s = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
         for cells in [750, 4000] {
             let made = init(&s, &options(cells)).unwrap();
@@ -444,16 +445,7 @@ fn pipeline_on_the_shared_surfaces() {
         println!("skipping: ../shared/data not found");
         return;
     };
-    let files = [
-        "inspired_mesh.obj",
-        "Neumunster.ply",
-        "botanic-garden-bubble.off",
-        "train-station.off",
-        "barrellvault10m.ply",
-        "YasIsland.off",
-        "free_negshell_marc_anet.obj",
-    ];
-    for file in files {
+    for file in FLATTENABLE {
         let s = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
         for cells in [750, 4000] {
             let plan_view = InitOptions {
