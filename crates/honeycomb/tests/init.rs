@@ -436,8 +436,7 @@ fn hex_meshes_on_the_shared_surfaces() {
 
 /// `pipeline`'s path on the real surfaces: the plan-view grid (ARAP where S folds over seen from
 /// above), then the solve for a mesh the program made (broken boundary cells dropped, a second
-/// try without fairness). At about 1.5k vertices all of them become honeycombs, and at 8k all
-/// reach omega 0.01 but Yas Island, which stops near omega 0.04 (printed, not asserted).
+/// try without fairness). At about 1.5k and 8k vertices all of them reach omega 0.01.
 /// camelhead is left out: its flattened cells vary too much in size (cv 0.76).
 #[test]
 fn pipeline_on_the_shared_surfaces() {
