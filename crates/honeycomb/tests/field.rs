@@ -207,7 +207,7 @@ struct Figures {
 fn mesh_and_measure(s: &PolyMesh, vertices: usize, seed: u64, what: &str) -> (PolyMesh, Figures) {
     let edge = edge_for(s, vertices);
     let start = Instant::now();
-    let hex = field_hex_mesh(s, edge, &[], seed).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let hex = field_hex_mesh(s, edge, &[], true, seed).unwrap_or_else(|e| panic!("{what}: {e}"));
     let seconds = start.elapsed().as_secs_f64();
     let conn = validate_base_mesh(&hex).unwrap_or_else(|e| panic!("{what}: {e}"));
     assert!((0..hex.vertices.len()).all(|v| (2..=3).contains(&conn.valence(v))));
@@ -347,9 +347,9 @@ fn a_hemisphere_is_covered_with_cells_on_the_sphere() {
 fn the_same_seed_gives_the_same_mesh_and_another_seed_another() {
     let s = disk(10.0, 40, |x, y| (x * x - y * y) / 30.0);
     let edge = edge_for(&s, 1000);
-    let a = field_hex_mesh(&s, edge, &[], 7).unwrap();
-    let b = field_hex_mesh(&s, edge, &[], 7).unwrap();
-    let c = field_hex_mesh(&s, edge, &[], 8).unwrap();
+    let a = field_hex_mesh(&s, edge, &[], true, 7).unwrap();
+    let b = field_hex_mesh(&s, edge, &[], true, 7).unwrap();
+    let c = field_hex_mesh(&s, edge, &[], true, 8).unwrap();
     assert_eq!(a, b);
     assert_ne!(a, c);
 }
@@ -391,7 +391,7 @@ fn hex_edges_follow_strokes_and_the_boundary() {
         .map(|k| honeycomb::Vec3::new(cos * k as f64, sin * k as f64, 0.0))
         .collect();
     let edge = 0.5;
-    let hex = field_hex_mesh(&s, edge, &[stroke], 1).unwrap();
+    let hex = field_hex_mesh(&s, edge, &[stroke], true, 1).unwrap();
     validate_base_mesh(&hex).unwrap();
     let conn = honeycomb::mesh::Connectivity::build(&hex).unwrap();
     let (mut near_stroke, mut near_side) = (Vec::new(), Vec::new());
@@ -424,17 +424,17 @@ fn hex_edges_follow_strokes_and_the_boundary() {
 fn unusable_sizes_and_surfaces_are_errors() {
     let s = disk(1.0, 10, |_, _| 0.0);
     for edge in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        match field_hex_mesh(&s, edge, &[], 1) {
+        match field_hex_mesh(&s, edge, &[], true, 1) {
             Err(Error::Parameter(m)) => assert!(m.contains("edge length"), "{m}"),
             other => panic!("edge {edge}: {other:?}"),
         }
     }
     // Far too many cells for the surface; and cells larger than it.
     assert!(matches!(
-        field_hex_mesh(&s, 1e-5, &[], 1),
+        field_hex_mesh(&s, 1e-5, &[], true, 1),
         Err(Error::Parameter(_))
     ));
-    match field_hex_mesh(&s, 5.0, &[], 1) {
+    match field_hex_mesh(&s, 5.0, &[], true, 1) {
         Err(Error::Mesh(m)) => assert!(m.contains("choose smaller cells"), "{m}"),
         other => panic!("{other:?}"),
     }
@@ -442,13 +442,14 @@ fn unusable_sizes_and_surfaces_are_errors() {
         &s,
         0.1,
         &[vec![honeycomb::Vec3::new(f64::NAN, 0.0, 0.0)]],
+        true,
         1,
     ) {
         Err(Error::Parameter(m)) => assert!(m.contains("stroke 0"), "{m}"),
         other => panic!("{other:?}"),
     }
     assert!(matches!(
-        field_hex_mesh(&PolyMesh::default(), 0.1, &[], 1),
+        field_hex_mesh(&PolyMesh::default(), 0.1, &[], true, 1),
         Err(Error::Mesh(_))
     ));
     // Three triangles on one edge.
@@ -463,7 +464,7 @@ fn unusable_sizes_and_surfaces_are_errors() {
         vec![vec![0, 1, 2], vec![1, 0, 3], vec![0, 1, 4]],
     );
     assert!(matches!(
-        field_hex_mesh(&fin, 0.05, &[], 1),
+        field_hex_mesh(&fin, 0.05, &[], true, 1),
         Err(Error::Mesh(_))
     ));
     // A degenerate (zero-area) surface.
@@ -475,7 +476,7 @@ fn unusable_sizes_and_surfaces_are_errors() {
         ],
         vec![vec![0, 1, 2]],
     );
-    assert!(field_hex_mesh(&flat, 0.1, &[], 1).is_err());
+    assert!(field_hex_mesh(&flat, 0.1, &[], true, 1).is_err());
 }
 
 /// The yardstick: the roof triangulated into about 40k triangles.

@@ -518,5 +518,22 @@ fn the_field_method_through_init() {
         )
         .unwrap();
         assert_eq!(again.base, made.base, "not deterministic");
+        // `--align none` leaves the field free of the boundary: another mesh, as good.
+        let free = init(
+            &s,
+            &InitOptions {
+                method: Method::Field,
+                align: Align::None,
+                ..options(750)
+            },
+        )
+        .unwrap();
+        assert_good(
+            &free.base,
+            &s,
+            &free.report,
+            &format!("field {shape:?}, free"),
+        );
+        assert_ne!(free.base, made.base);
     }
 }

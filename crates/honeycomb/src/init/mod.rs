@@ -328,11 +328,13 @@ fn init_field(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Resu
         CellSize::Cells(n) => (area / (n as f64 * 1.5 * 3f64.sqrt())).sqrt(),
         CellSize::EdgeLength(l) => l,
     };
-    let strokes: &[Vec<Vec3>] = match &options.align {
-        Align::Strokes(lines) => lines,
-        Align::Boundary | Align::None => &[],
+    // Strokes come on top of the boundary: near a stroke the hex edges follow it.
+    let (strokes, follow_boundary): (&[Vec<Vec3>], bool) = match &options.align {
+        Align::Strokes(lines) => (lines, true),
+        Align::Boundary => (&[], true),
+        Align::None => (&[], false),
     };
-    let base = field::field_hex_mesh(surface, edge, strokes, options.seed)?;
+    let base = field::field_hex_mesh(surface, edge, strokes, follow_boundary, options.seed)?;
     let conn = validate_base_mesh(&base)?;
     let report = report(&base, &conn, surface, options, edge, None, start)?;
     Ok(Initialized { base, report })

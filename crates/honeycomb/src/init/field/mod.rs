@@ -36,8 +36,9 @@ use tangent::SQRT3;
 const SAMPLE_SPACING: f64 = 0.7;
 
 /// A trivalent hexagonal mesh on `surface` whose cells have edge length about `edge` (model units),
-/// its hex edges following a smooth 6-RoSy field (aligned with S's boundary where S has one,
-/// and with `strokes` polylines if given), vertices exactly on S. Deterministic for a seed.
+/// its hex edges following a smooth 6-RoSy field (aligned with S's boundary where S has one and
+/// `follow_boundary` asks for it, and with `strokes` polylines if given), vertices exactly on
+/// S. Deterministic for a seed.
 ///
 /// "Aligned with the boundary" means hex edges along it or across it, whichever the field
 /// finds closer (both keep a straight row of cells along the boundary); near a stroke the hex
@@ -49,6 +50,7 @@ pub fn field_hex_mesh(
     surface: &PolyMesh,
     edge: f64,
     strokes: &[Vec<Vec3>],
+    follow_boundary: bool,
     seed: u64,
 ) -> Result<PolyMesh> {
     if !edge.is_finite() || edge <= 0.0 {
@@ -93,7 +95,7 @@ pub fn field_hex_mesh(
     }
     let spacing = SQRT3 * edge;
     let sampling = Sampling::new(&s, SAMPLE_SPACING * spacing)?;
-    let fixed = orientation::constraints(&sampling, strokes, spacing);
+    let fixed = orientation::constraints(&sampling, strokes, follow_boundary, spacing);
     let Sampling {
         points,
         normals,

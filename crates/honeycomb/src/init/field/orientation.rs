@@ -63,11 +63,19 @@ pub fn closest_twelvefold(target: Vec3, n: Vec3, t: Vec3) -> Vec3 {
 
 /// The directions the field must take: a stroke's near a stroke (within half a lattice
 /// spacing), else, on S's boundary, along or across the boundary.
-pub fn constraints(sampling: &Sampling, strokes: &[Vec<Vec3>], spacing: f64) -> Vec<Constraint> {
+pub fn constraints(
+    sampling: &Sampling,
+    strokes: &[Vec<Vec3>],
+    follow_boundary: bool,
+    spacing: f64,
+) -> Vec<Constraint> {
     let mut fixed: Vec<Constraint> = sampling
         .boundary_tangents
         .iter()
-        .map(|t| t.map_or(Constraint::Free, Constraint::AlongOrAcross))
+        .map(|t| match t {
+            Some(t) if follow_boundary => Constraint::AlongOrAcross(*t),
+            _ => Constraint::Free,
+        })
         .collect();
     if strokes.iter().all(|s| s.len() < 2) {
         return fixed;
