@@ -177,21 +177,10 @@ fn three_holes(n: usize, height: impl Fn(f64, f64) -> f64) -> PolyMesh {
     PolyMesh::new(kept, faces)
 }
 
-fn surface_area(s: &PolyMesh) -> f64 {
-    let (vertices, triangles) = s.star_triangulated();
-    triangles
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| vertices[v]);
-            0.5 * (b - a).cross(c - a).norm()
-        })
-        .sum()
-}
-
 /// The edge length that gives about `vertices` hex vertices (two per cell) on `s`.
 fn edge_for(s: &PolyMesh, vertices: usize) -> f64 {
     let cells = vertices as f64 / 2.0;
-    (surface_area(s) / (cells * 1.5 * 3f64.sqrt())).sqrt()
+    (s.area() / (cells * honeycomb::init::hexagon_area(1.0))).sqrt()
 }
 
 struct Figures {

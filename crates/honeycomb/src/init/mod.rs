@@ -42,6 +42,21 @@ pub enum CellSize {
     EdgeLength(f64),
 }
 
+impl CellSize {
+    /// The cells' edge length on a surface of `area`.
+    pub fn edge_on(self, area: f64) -> f64 {
+        match self {
+            CellSize::Cells(n) => (area / (n as f64 * hexagon_area(1.0))).sqrt(),
+            CellSize::EdgeLength(l) => l,
+        }
+    }
+}
+
+/// The area of a regular hexagon of this edge length.
+pub fn hexagon_area(edge: f64) -> f64 {
+    1.5 * 3f64.sqrt() * edge * edge
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
@@ -200,12 +215,8 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     let (vertices, triangles) = surface.star_triangulated();
     let flat = flatten(&vertices, &triangles, options.flattener)?;
     let area = flat.area;
-    let hexagon = |l: f64| 1.5 * 3f64.sqrt() * l * l;
-    let edge = match options.size {
-        CellSize::Cells(n) => (area / (n as f64 * hexagon(1.0))).sqrt(),
-        CellSize::EdgeLength(l) => l,
-    };
-    let fits = area / hexagon(edge);
+    let edge = options.size.edge_on(area);
+    let fits = area / hexagon_area(edge);
     if fits > MAX_CELLS as f64 {
         return Err(Error::Parameter(format!(
             "--edge-length {edge}: about {fits:.0} cells on a surface of area {area:.4}; \
@@ -221,7 +232,7 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     // The lattice covers the flat domain's bounding box: a thin diagonal strip could ask for
     // far more cells there than the surface holds.
     let (lo, hi) = bounds(&flat.points);
-    let covering = (hi[0] - lo[0] + 4.0 * edge) * (hi[1] - lo[1] + 4.0 * edge) / hexagon(edge);
+    let covering = (hi[0] - lo[0] + 4.0 * edge) * (hi[1] - lo[1] + 4.0 * edge) / hexagon_area(edge);
     if covering > 10.0 * MAX_CELLS as f64 {
         return Err(Error::Mesh(format!(
             "the flattened surface spreads over about {covering:.0} cells of its bounding box \
@@ -316,18 +327,7 @@ fn init_field(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Resu
                 .into(),
         ));
     }
-    let (vertices, triangles) = surface.star_triangulated();
-    let area: f64 = triangles
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| vertices[v]);
-            0.5 * (b - a).cross(c - a).norm()
-        })
-        .sum();
-    let edge = match options.size {
-        CellSize::Cells(n) => (area / (n as f64 * 1.5 * 3f64.sqrt())).sqrt(),
-        CellSize::EdgeLength(l) => l,
-    };
+    let edge = options.size.edge_on(surface.area());
     // Strokes come on top of the boundary: near a stroke the hex edges follow it.
     let (strokes, follow_boundary): (&[Vec<Vec3>], bool) = match &options.align {
         Align::Strokes(lines) => (lines, true),

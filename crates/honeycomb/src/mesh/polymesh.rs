@@ -65,6 +65,19 @@ impl PolyMesh {
         face.iter().fold(Vec3::ZERO, |c, &v| c + self.vertices[v]) / face.len() as f64
     }
 
+    /// The area of the surface the mesh spans: that of its star triangulation, the one S is
+    /// made of (see [`PolyMesh::star_triangulated`]).
+    pub fn area(&self) -> f64 {
+        let (vertices, triangles) = self.star_triangulated();
+        triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| vertices[v]);
+                0.5 * (b - a).cross(c - a).norm()
+            })
+            .sum()
+    }
+
     /// A triangulation that makes a fair surface of a polygon mesh: quads split along a
     /// diagonal, larger faces by a star of triangles around their centroid (an added vertex).
     /// Unlike a fan from a corner, the star does not fold a non-convex or twisted cell.

@@ -14,7 +14,7 @@ use super::{optimize, OptimizeOptions, Optimized};
 use crate::error::Result;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::IterationInfo;
-use crate::structure::{is_convex, measure, Honeycomb, Measures};
+use crate::structure::{measure, Honeycomb, Measures};
 use crate::surface::Surface;
 
 /// A cap shorter than this share of the mean edge length has collapsed.
@@ -45,7 +45,7 @@ pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -
         let cap = conn.is_boundary_edge(e) && conn.valence(a) == 2 && conn.valence(b) == 2;
         (cap && length(e) < limit)
             || m.delta_per_wall[e] > BROKEN_WALL
-            || !is_convex(h.wall(e))
+            || !m.convex_per_wall[e]
             || m.omega_per_node[a] > BROKEN_NODE_DEG
             || m.omega_per_node[b] > BROKEN_NODE_DEG
     };
@@ -110,7 +110,8 @@ pub fn optimize_dropping_broken_cells(
     let (mut dropped_cells, mut drops) = (0, 0);
     // Cells break in the first few steps: a short probe finds them without paying for a whole
     // solve; the whole solve follows once a probe is clean (and can still break some).
-    let mut probing = probe.solver.max_iterations < options.solver.max_iterations;
+    let probes = probe.solver.max_iterations < options.solver.max_iterations;
+    let mut probing = probes;
     for solve in 1.. {
         let this = if probing { &probe } else { options };
         let optimized = optimize(&base, Some(surface), this, &mut |i| progress(solve, i))?;
@@ -118,14 +119,10 @@ pub fn optimize_dropping_broken_cells(
         let broken =
             broken_boundary_cells(&optimized.honeycomb, &optimized.connectivity, &measures);
         let finished = !probing || optimized.solve.converged;
-        if broken.is_empty() && !finished {
-            probing = false;
-            continue;
-        }
         let out_of_drops = drops == MAX_DROPS || dropped_cells + broken.len() > allowed;
         if broken.is_empty() || out_of_drops {
-            if probing && !finished {
-                // Out of drops: the whole solve on what is left, for the record.
+            if !finished {
+                // A clean probe, or nothing more to drop: the whole solve on this mesh.
                 probing = false;
                 continue;
             }
@@ -142,7 +139,7 @@ pub fn optimize_dropping_broken_cells(
         // From the start again: a solve that broke some cells has bent their neighbours too
         // (starting from where it ended breaks more cells in every round).
         base = without_cells(&base, &broken);
-        probing = probe.solver.max_iterations < options.solver.max_iterations;
+        probing = probes;
     }
     unreachable!("the loop returns")
 }

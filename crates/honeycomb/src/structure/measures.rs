@@ -33,6 +33,9 @@ pub struct Measures {
     /// Per edge: delta of its wall.
     #[serde(skip)]
     pub delta_per_wall: Vec<f64>,
+    /// Per edge: whether its wall quad is convex.
+    #[serde(skip)]
+    pub convex_per_wall: Vec<bool>,
 }
 
 /// The angles (degrees) between consecutive walls around the axis at node `v`: three for a
@@ -95,7 +98,7 @@ pub fn thickest_uncrossed(h: &Honeycomb) -> f64 {
 }
 
 /// Whether a (nearly planar) quad is convex: it turns the same way at all four corners.
-pub fn is_convex(p: [Vec3; 4]) -> bool {
+fn is_convex(p: [Vec3; 4]) -> bool {
     let corner = |k: usize| (p[(k + 1) % 4] - p[k]).cross(p[(k + 3) % 4] - p[k]);
     let first = corner(0);
     (1..4).all(|k| corner(k).dot(first) > 0.0)
@@ -133,12 +136,13 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
                 .fold(0.0, f64::max)
         })
         .collect();
-    let delta_per_wall: Vec<f64> = (0..h.edges.len())
-        .map(|e| quad_planarity(h.wall(e)))
-        .collect();
-    let nonconvex_walls = (0..h.edges.len())
-        .filter(|&e| !is_convex(h.wall(e)))
-        .count();
+    let (delta_per_wall, convex_per_wall): (Vec<f64>, Vec<bool>) = (0..h.edges.len())
+        .map(|e| {
+            let wall = h.wall(e);
+            (quad_planarity(wall), is_convex(wall))
+        })
+        .unzip();
+    let nonconvex_walls = convex_per_wall.iter().filter(|&&c| !c).count();
     let mean_edge_length = h
         .edges
         .iter()
@@ -171,6 +175,7 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         valence_histogram,
         omega_per_node,
         delta_per_wall,
+        convex_per_wall,
     }
 }
 
@@ -202,13 +207,13 @@ mod tests {
         // Each tip moves 2 * 0.71 towards the other: more than the unit edge between them.
         let leaning = Honeycomb::new(mesh.clone(), &conn, axes, 2.0);
         assert_eq!(measure(&leaning, &surface).nonconvex_walls, 1);
-        let thin = Honeycomb::new(mesh.clone(), &conn, leaning_axes(&leaning), 0.3);
+        let thin = Honeycomb::new(mesh.clone(), &conn, leaning.axes.clone(), 0.3);
         assert_eq!(measure(&thin, &surface).nonconvex_walls, 0);
         // Crossing starts at 1 / (2 * 0.707...): just below it the wall is whole, above not.
         let limit = thickest_uncrossed(&leaning);
         assert!((limit - 0.5f64.sqrt()).abs() < 1e-12, "{limit}");
         for (t, crossed) in [(0.99 * limit, 0), (1.01 * limit, 1)] {
-            let h = Honeycomb::new(mesh.clone(), &conn, leaning_axes(&leaning), t);
+            let h = Honeycomb::new(mesh.clone(), &conn, leaning.axes.clone(), t);
             assert_eq!(
                 measure(&h, &surface).nonconvex_walls,
                 crossed,
@@ -228,11 +233,5 @@ mod tests {
                 "thickness {t}"
             );
         }
-    }
-
-    fn leaning_axes(h: &Honeycomb) -> Vec<Vec3> {
-        (0..h.base.vertices.len())
-            .map(|v| (h.offset.vertices[v] - h.base.vertices[v]).normalized())
-            .collect()
     }
 }

@@ -69,16 +69,8 @@ pub fn field_hex_mesh(
     }
     validate_surface_mesh(surface)?;
     let s = Surface::from_mesh(surface)?;
-    let area: f64 = s
-        .triangles()
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| s.vertices()[v]);
-            0.5 * (b - a).cross(c - a).norm()
-        })
-        .sum();
-    let hexagon = 1.5 * SQRT3 * edge * edge;
-    let cells = area / hexagon;
+    let area = surface.area();
+    let cells = area / super::hexagon_area(edge);
     if cells > super::MAX_CELLS as f64 {
         return Err(Error::Parameter(format!(
             "edge length {edge}: about {cells:.0} cells on a surface of area {area:.4}; \
