@@ -17,7 +17,9 @@ use crate::constraints::{AxisTargets, Layout, SharedTargets, VertexTargets};
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
-use crate::optimize::{check_thickness, families, initial_normals, Frame, Weights};
+use crate::optimize::{
+    block_positions, check_thickness, families, initial_normals, Frame, Weights,
+};
 use crate::solve::{GuidedProjection, IterationInfo, SolveState, SolverOptions};
 use crate::structure::{measure, node_axes, Honeycomb, Measures};
 use crate::surface::Surface;
@@ -241,8 +243,13 @@ impl<'a> EditSession<'a> {
         };
         // The first solve as `optimize` does it (a loaded honeycomb converges at once).
         let first = families(&ws.base, &ws.conn, &ws.surface, &options.first_weights);
-        GuidedProjection::new(x.len(), first)?.solve(&mut x, &solver_options, &mut |_| {})?;
-        let solver = GuidedProjection::new(x.len(), fams)?;
+        let blocks = block_positions(&ws.base, &ws.conn, x.len());
+        GuidedProjection::with_positions(x.len(), first, Some(&blocks))?.solve(
+            &mut x,
+            &solver_options,
+            &mut |_| {},
+        )?;
+        let solver = GuidedProjection::with_positions(x.len(), fams, Some(&blocks))?;
         Ok(EditSession {
             ws,
             layout,

@@ -14,7 +14,8 @@ pub use broken_cells::{
 pub use frame::Frame;
 pub use made_mesh::{optimize_made_mesh, Attempt, MadeMeshResult};
 pub use problem::{
-    boundary_vertices_on_surface_boundary, families, initial_normals, min_edge_family, node_walls,
+    block_positions, boundary_vertices_on_surface_boundary, families, initial_normals,
+    min_edge_family, node_walls,
 };
 pub use quads::{QuadOptions, QuadPattern};
 pub use variants::{shading_axes, unit_light, AxesOptions, ParallelOptions};
@@ -283,7 +284,8 @@ pub fn optimize(
     let problem = Problem::build(&mesh, &conn, &normalized_surface, options, &weights, &frame);
     let (layout, offset, mut x) = (problem.layout, problem.offset, problem.x);
     let quad_cover = problem.quads;
-    let mut solver = GuidedProjection::new(x.len(), problem.families)?;
+    let positions = block_positions(&mesh, &conn, x.len());
+    let mut solver = GuidedProjection::with_positions(x.len(), problem.families, Some(&positions))?;
     let solve = solver.solve(&mut x, &options.solver, progress)?;
 
     let vertices: Vec<Vec3> = (0..layout.num_vertices)

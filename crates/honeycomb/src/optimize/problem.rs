@@ -27,6 +27,19 @@ pub fn initial_normals(mesh: &PolyMesh, conn: &Connectivity, surface: &Surface) 
         .collect()
 }
 
+/// Where each block of three unknowns sits, for the solver's ordering: a vertex at its
+/// position, a wall normal at its edge's midpoint; blocks appended by variants are unplaced.
+pub fn block_positions(mesh: &PolyMesh, conn: &Connectivity, unknowns: usize) -> Vec<Option<Vec3>> {
+    let vertices = mesh.vertices.iter().map(|&p| Some(p));
+    let midpoints = conn
+        .edges
+        .iter()
+        .map(|&[a, b]| Some((mesh.vertices[a] + mesh.vertices[b]) * 0.5));
+    let mut positions: Vec<Option<Vec3>> = vertices.chain(midpoints).collect();
+    positions.resize(unknowns.div_ceil(3).max(positions.len()), None);
+    positions
+}
+
 /// Vertices of the base mesh's boundary that start on S's boundary.
 pub fn boundary_vertices_on_surface_boundary(
     mesh: &PolyMesh,

@@ -2,8 +2,9 @@
 //! structure) is done once, every later factorization is numeric only.
 
 use super::normal_matrix::NormalMatrix;
-use super::ordering::block_amd;
+use super::ordering::block_order;
 use crate::error::{Error, Result};
+use crate::geometry::Vec3;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
@@ -24,11 +25,16 @@ pub struct Cholesky {
 
 impl Cholesky {
     /// Symbolic analysis; with `block > 1` (unknowns in blocks of that many consecutive
-    /// indices) the ordering is computed on the block graph.
-    pub fn analyse(matrix: &NormalMatrix, block: usize) -> Result<Cholesky> {
+    /// indices) the ordering is computed on the block graph, by nested dissection when the
+    /// blocks' `positions` are given and the system is large.
+    pub fn analyse(
+        matrix: &NormalMatrix,
+        block: usize,
+        positions: Option<&[Option<Vec3>]>,
+    ) -> Result<Cholesky> {
         let pattern = pattern_of(matrix);
         let blocked = (block > 1 && matrix.n.is_multiple_of(block))
-            .then(|| block_amd(matrix, block))
+            .then(|| block_order(matrix, block, positions))
             .transpose()?;
         let ordering = match &blocked {
             Some((fwd, inv)) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, inv, matrix.n)),

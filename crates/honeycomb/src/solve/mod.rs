@@ -3,6 +3,7 @@
 
 mod cholesky;
 mod constraint;
+mod dissection;
 mod normal_matrix;
 mod ordering;
 mod solver;

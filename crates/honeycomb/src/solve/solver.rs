@@ -5,6 +5,7 @@ use super::cholesky::Cholesky;
 use super::constraint::{Constraint, Role};
 use super::normal_matrix::NormalMatrix;
 use crate::error::{Error, Result};
+use crate::geometry::Vec3;
 use serde::Serialize;
 use std::time::{Duration, Instant};
 
@@ -102,9 +103,20 @@ pub struct GuidedProjection<'a> {
 impl<'a> GuidedProjection<'a> {
     /// Builds the fixed pattern and its symbolic factorization.
     pub fn new(n: usize, families: Vec<Box<dyn Constraint + 'a>>) -> Result<Self> {
+        Self::with_positions(n, families, None)
+    }
+
+    /// As [`GuidedProjection::new`], with a position for each block of three unknowns where
+    /// one is known (a vertex, an edge's midpoint for its wall normal): large systems are then
+    /// ordered by nested dissection.
+    pub fn with_positions(
+        n: usize,
+        families: Vec<Box<dyn Constraint + 'a>>,
+        positions: Option<&[Option<Vec3>]>,
+    ) -> Result<Self> {
         let start = Instant::now();
         let matrix = NormalMatrix::new(n, &families);
-        let cholesky = Cholesky::analyse(&matrix, 3)?;
+        let cholesky = Cholesky::analyse(&matrix, 3, positions)?;
         let residuals = families.iter().map(|c| vec![0.0; c.num_rows()]).collect();
         let jacobians = families
             .iter()
