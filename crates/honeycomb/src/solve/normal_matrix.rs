@@ -21,34 +21,63 @@ pub struct NormalMatrix {
 
 impl NormalMatrix {
     pub fn new(n: usize, families: &[Box<dyn Constraint + '_>]) -> NormalMatrix {
-        let mut row_vars = Vec::with_capacity(families.len());
-        // Collect the upper-triangular entries column by column.
-        let mut columns: Vec<Vec<usize>> = (0..n).map(|j| vec![j]).collect();
-        for c in families {
-            let k = c.arity();
-            let mut vars = vec![0usize; c.num_rows() * k];
-            for (row, chunk) in vars.chunks_mut(k).enumerate() {
-                c.row_variables(row, chunk);
-                for &a in chunk.iter() {
-                    for &b in chunk.iter() {
-                        if a < b {
-                            columns[b].push(a);
+        let row_vars: Vec<Vec<usize>> = families
+            .iter()
+            .map(|c| {
+                let k = c.arity();
+                let mut vars = vec![0usize; c.num_rows() * k];
+                for (row, chunk) in vars.chunks_mut(k).enumerate() {
+                    c.row_variables(row, chunk);
+                }
+                vars
+            })
+            .collect();
+        // The upper-triangular entries column by column, in one flat array: count, place,
+        // then sort and deduplicate each column (no per-column allocations).
+        let each_pair = |visit: &mut dyn FnMut(usize, usize)| {
+            for (c, vars) in families.iter().zip(&row_vars) {
+                for chunk in vars.chunks(c.arity()) {
+                    for &a in chunk {
+                        for &b in chunk {
+                            if a < b {
+                                visit(a, b);
+                            }
                         }
                     }
                 }
             }
-            row_vars.push(vars);
+        };
+        let mut start = vec![0usize; n + 1];
+        each_pair(&mut |_, b| start[b + 1] += 1);
+        for j in 0..n {
+            start[j + 1] += start[j] + 1; // + the diagonal
         }
+        let mut entries = vec![0usize; start[n]];
+        let mut fill: Vec<usize> = start[..n].to_vec();
+        for (j, f) in fill.iter_mut().enumerate() {
+            entries[*f] = j;
+            *f += 1;
+        }
+        each_pair(&mut |a, b| {
+            entries[fill[b]] = a;
+            fill[b] += 1;
+        });
+        drop(fill);
         let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::new();
+        let mut row_idx = Vec::with_capacity(entries.len());
         col_ptr.push(0);
-        for col in &mut columns {
+        for j in 0..n {
+            let col = &mut entries[start[j]..start[j + 1]];
             col.sort_unstable();
-            col.dedup();
-            row_idx.extend_from_slice(col);
+            let first = row_idx.len();
+            for &r in col.iter() {
+                if row_idx.len() == first || row_idx[row_idx.len() - 1] != r {
+                    row_idx.push(r);
+                }
+            }
             col_ptr.push(row_idx.len());
         }
-        drop(columns);
+        drop(entries);
         assert!(
             row_idx.len() < u32::MAX as usize,
             "normal matrix too large for 32-bit slots"

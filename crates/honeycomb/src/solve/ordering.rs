@@ -50,23 +50,19 @@ pub fn block_order(
 /// Upper-triangular block pattern with the diagonal, column-compressed.
 fn block_pattern(m: &NormalMatrix, block: usize) -> (Vec<usize>, Vec<usize>) {
     let nb = m.n / block;
-    let mut columns: Vec<Vec<usize>> = vec![Vec::new(); nb];
-    for j in 0..m.n {
-        let bj = j / block;
-        for &i in &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]] {
-            let bi = i / block;
-            if bi < bj {
-                columns[bj].push(bi);
-            }
-        }
-    }
-    let mut col_ptr = vec![0usize];
-    let mut row_idx = Vec::new();
-    for (bj, col) in columns.iter_mut().enumerate() {
-        col.push(bj);
-        col.sort_unstable();
-        col.dedup();
-        row_idx.extend_from_slice(col);
+    let mut col_ptr = Vec::with_capacity(nb + 1);
+    let mut row_idx = Vec::with_capacity(m.nnz() / block);
+    let mut column = Vec::new();
+    col_ptr.push(0);
+    for bj in 0..nb {
+        // The union of the block's scalar columns, in blocks.
+        let scalar = m.col_ptr[bj * block]..m.col_ptr[(bj + 1) * block];
+        column.clear();
+        column.extend(m.row_idx[scalar].iter().map(|&i| i / block));
+        column.push(bj);
+        column.sort_unstable();
+        column.dedup();
+        row_idx.extend_from_slice(&column);
         col_ptr.push(row_idx.len());
     }
     (col_ptr, row_idx)
