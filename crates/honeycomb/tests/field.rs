@@ -495,18 +495,17 @@ fn shared_data() -> Option<PathBuf> {
 /// The real design surfaces of ../shared/data at about 1.5k and 8k hex vertices. Every result
 /// is a valid base mesh on S, facing like S, with edge cv at most 0.12; the hexagon share is
 /// asserted at the target except where curvature or narrow bands leave more 5-7 pairs
-/// (`BELOW_TARGET`, with the share measured there for seed 1).
+/// (`BELOW_TARGET`, with the share measured there for seed 1). The camel head's curvature
+/// at the scale of the cells adds up to about 40 positive and 34 negative quanta of 60
+/// degrees, so a lattice of one spacing needs many pentagons and heptagons there; at 1.5k
+/// vertices seeds 0 to 2 give 0.89 to 0.94 (0.96 at 8k).
 #[test]
 fn hex_meshes_on_the_shared_surfaces() {
     let Some(dir) = shared_data() else {
         println!("skipping: ../shared/data not found");
         return;
     };
-    const BELOW_TARGET: [(&str, usize, f64); 3] = [
-        ("train-station.off", 1500, 0.94),
-        ("camelhead.off", 1500, 0.88),
-        ("camelhead.off", 8000, 0.92),
-    ];
+    const BELOW_TARGET: [(&str, usize, f64); 1] = [("camelhead.off", 1500, 0.90)];
     let mut failures = Vec::new();
     for name in [
         "inspired_mesh.obj",

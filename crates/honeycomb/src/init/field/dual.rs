@@ -42,7 +42,9 @@ pub fn hex_mesh(lattice: &LatticeMesh, surface: &Surface, edge: f64) -> PolyMesh
         .collect();
     let cells: Vec<Option<Vec<usize>>> = (0..lattice.points.len())
         .map(|v| closed_fan(v, &fans[v], triangles, &owner))
-        .map(|fan| fan.filter(|f| f.iter().all(|&t| corners[t].on_s) && faces_like_s(f, &corners)))
+        .map(|fan| {
+            fan.filter(|f| f.iter().all(|&t| corners[t].on_s) && faces_like_s(f, &corners, surface))
+        })
         .collect();
     let Some(piece) = largest_piece(&cells, triangles) else {
         return PolyMesh::default();
@@ -79,9 +81,9 @@ struct Corner {
     on_s: bool,
 }
 
-/// Whether the cell's polygon turns counter-clockwise about S's normals at its corners (on a
-/// sharp fold of S the projected corners can turn it over).
-fn faces_like_s(fan: &[usize], corners: &[Corner]) -> bool {
+/// Whether the cell's polygon turns counter-clockwise about S's normals at its corners and at
+/// its centre (on a sharp fold of S the projected corners can turn it over).
+fn faces_like_s(fan: &[usize], corners: &[Corner], surface: &Surface) -> bool {
     let c = fan.iter().fold(Vec3::ZERO, |s, &t| s + corners[t].point) / fan.len() as f64;
     let mut area = Vec3::ZERO;
     let mut normal = Vec3::ZERO;
@@ -93,7 +95,8 @@ fn faces_like_s(fan: &[usize], corners: &[Corner]) -> bool {
         area += (a - c).cross(b - c);
         normal += corners[fan[k]].normal;
     }
-    area.dot(normal) > 0.0
+    // And about S's normal at the centre (on strongly curved S the two can disagree).
+    area.dot(normal) > 0.0 && area.dot(surface.normal_at(c)) > 0.0
 }
 
 /// The triangles around `v` counter-clockwise, if they close into one fan.

@@ -13,8 +13,12 @@ use std::collections::HashMap;
 
 /// Flip passes over all edges (each pass only flips what lowers the valence deviation).
 const FLIP_PASSES: usize = 8;
+/// Rounds of greedy flips and dislocation glides.
+const GLIDE_ROUNDS: usize = 4;
+/// The longest glide path tried, in lattice steps.
+const LONGEST_GLIDE: usize = 8;
 /// Smoothing steps, each moving a vertex this share of the way to its neighbours' mean.
-const SMOOTHING_STEPS: usize = 3;
+const SMOOTHING_STEPS: usize = 12;
 const SMOOTHING_RATE: f64 = 0.5;
 /// A flipped triangle's shortest edge must be at least this share of its longest.
 const MIN_EDGE_RATIO: f64 = 0.4;
@@ -129,85 +133,261 @@ fn edge_ratio(points: &[Vec3], [a, b, c]: [usize; 3]) -> f64 {
     shortest / longest
 }
 
-/// Greedy flips of interior edges that lower the sum over inner vertices of (valence - 6)^2.
+/// Greedy flips of interior edges that lower the sum over inner vertices of (valence - 6)^2,
+/// then dislocations glided towards partners or the border (see [`Flipper::glide`]), in
+/// rounds until nothing changes.
 fn flip_towards_valence_six(lattice: &mut LatticeMesh) {
-    let triangles = &mut lattice.triangles;
-    let mut owner: HashMap<(usize, usize), usize> = HashMap::with_capacity(3 * triangles.len());
-    for (t, tri) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            owner.insert((tri[k], tri[(k + 1) % 3]), t);
+    let LatticeMesh {
+        points,
+        normals,
+        triangles,
+    } = lattice;
+    let mut flipper = Flipper::new(points, normals, triangles);
+    for _ in 0..GLIDE_ROUNDS {
+        flipper.greedy();
+        if flipper.glide() == 0 {
+            break;
         }
     }
-    let count = lattice.points.len();
-    let mut valence = vec![0i64; count];
-    let mut inner = vec![true; count];
-    for &(a, b) in owner.keys() {
-        // Each undirected edge is counted from both sides when it is interior.
-        valence[a] += 1;
-        if !owner.contains_key(&(b, a)) {
-            valence[b] += 1;
-            inner[a] = false;
-            inner[b] = false;
+    flipper.greedy();
+}
+
+/// One edge flip: edge (a, b) of triangles t1 = (a, b, c) and t2 = (b, a, d) becomes (c, d).
+#[derive(Clone, Copy, Debug)]
+struct Flip {
+    a: usize,
+    b: usize,
+    c: usize,
+    d: usize,
+    t1: usize,
+    t2: usize,
+}
+
+/// The lattice triangles with what edge flips need: the triangle of each directed edge, and
+/// each vertex's valence and whether it is inner.
+struct Flipper<'a> {
+    points: &'a [Vec3],
+    normals: &'a [Vec3],
+    triangles: &'a mut Vec<[usize; 3]>,
+    owner: HashMap<(usize, usize), usize>,
+    valence: Vec<i64>,
+    inner: Vec<bool>,
+}
+
+impl<'a> Flipper<'a> {
+    fn new(
+        points: &'a [Vec3],
+        normals: &'a [Vec3],
+        triangles: &'a mut Vec<[usize; 3]>,
+    ) -> Flipper<'a> {
+        let mut owner: HashMap<(usize, usize), usize> = HashMap::with_capacity(3 * triangles.len());
+        for (t, tri) in triangles.iter().enumerate() {
+            for k in 0..3 {
+                owner.insert((tri[k], tri[(k + 1) % 3]), t);
+            }
+        }
+        let count = points.len();
+        let mut valence = vec![0i64; count];
+        let mut inner = vec![true; count];
+        for &(a, b) in owner.keys() {
+            // Each undirected edge is counted from both sides when it is interior.
+            valence[a] += 1;
+            if !owner.contains_key(&(b, a)) {
+                valence[b] += 1;
+                inner[a] = false;
+                inner[b] = false;
+            }
+        }
+        Flipper {
+            points,
+            normals,
+            triangles,
+            owner,
+            valence,
+            inner,
         }
     }
-    let deviation = |v: usize, valence: i64| {
-        if inner[v] {
+
+    fn deviation(&self, v: usize, valence: i64) -> i64 {
+        if self.inner[v] {
             (valence - 6) * (valence - 6)
         } else {
             0
         }
-    };
-    for _ in 0..FLIP_PASSES {
-        let mut edges: Vec<(usize, usize)> = owner
-            .keys()
-            .copied()
-            .filter(|&(a, b)| a < b && owner.contains_key(&(b, a)))
+    }
+
+    /// The flip of edge (a, b) and the change in the valence deviation it makes, if the edge
+    /// is interior, the flip keeps the mesh a manifold with fair triangles and no vertex of
+    /// valence below 3.
+    fn candidate(&self, a: usize, b: usize) -> Option<(i64, Flip)> {
+        let (&t1, &t2) = (self.owner.get(&(a, b))?, self.owner.get(&(b, a))?);
+        let c = third(self.triangles[t1], a, b);
+        let d = third(self.triangles[t2], b, a);
+        if c == d || self.owner.contains_key(&(c, d)) || self.owner.contains_key(&(d, c)) {
+            return None;
+        }
+        let v = &self.valence;
+        if v[a] <= 3 || v[b] <= 3 {
+            return None;
+        }
+        let before = self.deviation(a, v[a])
+            + self.deviation(b, v[b])
+            + self.deviation(c, v[c])
+            + self.deviation(d, v[d]);
+        let after = self.deviation(a, v[a] - 1)
+            + self.deviation(b, v[b] - 1)
+            + self.deviation(c, v[c] + 1)
+            + self.deviation(d, v[d] + 1);
+        let flip = Flip { a, b, c, d, t1, t2 };
+        let fine = fair(self.points, self.normals, [c, a, d])
+            && fair(self.points, self.normals, [d, b, c]);
+        fine.then_some((after - before, flip))
+    }
+
+    fn apply(&mut self, f: Flip) {
+        let Flip { a, b, c, d, t1, t2 } = f;
+        self.triangles[t1] = [c, a, d];
+        self.triangles[t2] = [d, b, c];
+        self.owner.remove(&(a, b));
+        self.owner.remove(&(b, a));
+        self.owner.insert((b, c), t2);
+        self.owner.insert((a, d), t1);
+        self.owner.insert((c, d), t2);
+        self.owner.insert((d, c), t1);
+        self.valence[a] -= 1;
+        self.valence[b] -= 1;
+        self.valence[c] += 1;
+        self.valence[d] += 1;
+    }
+
+    fn revert(&mut self, f: Flip) {
+        let Flip { a, b, c, d, t1, t2 } = f;
+        self.triangles[t1] = [a, b, c];
+        self.triangles[t2] = [b, a, d];
+        self.owner.remove(&(c, d));
+        self.owner.remove(&(d, c));
+        self.owner.insert((a, b), t1);
+        self.owner.insert((b, c), t1);
+        self.owner.insert((c, a), t1);
+        self.owner.insert((b, a), t2);
+        self.owner.insert((a, d), t2);
+        self.owner.insert((d, b), t2);
+        self.valence[a] += 1;
+        self.valence[b] += 1;
+        self.valence[c] -= 1;
+        self.valence[d] -= 1;
+    }
+
+    /// Passes of every flip that lowers the deviation.
+    fn greedy(&mut self) {
+        for _ in 0..FLIP_PASSES {
+            let mut edges: Vec<(usize, usize)> = self
+                .owner
+                .keys()
+                .copied()
+                .filter(|&(a, b)| a < b && self.owner.contains_key(&(b, a)))
+                .collect();
+            edges.sort_unstable();
+            let mut flipped = 0;
+            for (a, b) in edges {
+                if let Some((change, flip)) = self.candidate(a, b) {
+                    if change < 0 {
+                        self.apply(flip);
+                        flipped += 1;
+                    }
+                }
+            }
+            if flipped == 0 {
+                break;
+            }
+        }
+    }
+
+    /// Moves dislocations (an inner vertex of valence 7 next to one of valence 5) along their
+    /// glide lines: flipping the edge from the 7 to a vertex x the 7 and the 5 share turns the
+    /// 7 and the 5 into sixes and x and the vertex across into a new 5 and 7, one step along.
+    /// Steps cost nothing while they meet sixes; a path is kept when within
+    /// [`LONGEST_GLIDE`] steps it meets another defect or the border and lowers the
+    /// deviation, and undone otherwise. The number of paths kept.
+    fn glide(&mut self) -> usize {
+        let mut kept = 0;
+        let sevens: Vec<usize> = (0..self.valence.len())
+            .filter(|&v| self.inner[v] && self.valence[v] == 7)
             .collect();
-        edges.sort_unstable();
-        let mut flipped = 0;
-        for (a, b) in edges {
-            let (Some(&t1), Some(&t2)) = (owner.get(&(a, b)), owner.get(&(b, a))) else {
-                continue;
+        for seven in sevens {
+            'pairs: for five in self.fives_next_to(seven) {
+                for side in [(seven, five), (five, seven)] {
+                    if self.valence[seven] != 7 || self.valence[five] != 5 {
+                        continue 'pairs;
+                    }
+                    let Some(&t) = self.owner.get(&side) else {
+                        continue;
+                    };
+                    let pivot = third(self.triangles[t], side.0, side.1);
+                    if self.glide_from(seven, five, pivot) {
+                        kept += 1;
+                        continue 'pairs;
+                    }
+                }
+            }
+        }
+        kept
+    }
+
+    fn fives_next_to(&self, v: usize) -> Vec<usize> {
+        let mut fives: Vec<usize> = self
+            .owner
+            .keys()
+            .filter(|&&(a, b)| a == v && self.inner[b] && self.valence[b] == 5)
+            .map(|&(_, b)| b)
+            .collect();
+        fives.sort_unstable();
+        fives
+    }
+
+    /// Glides the dislocation (7 at `seven`, 5 at `five`) over `pivot`, a vertex both share,
+    /// and on in that direction; true when kept.
+    fn glide_from(&mut self, mut seven: usize, mut five: usize, mut pivot: usize) -> bool {
+        let mut path = Vec::new();
+        for _ in 0..LONGEST_GLIDE {
+            let Some((change, flip)) = self.candidate(seven, pivot) else {
+                break;
             };
-            let c = third(triangles[t1], a, b);
-            let d = third(triangles[t2], b, a);
-            if c == d || owner.contains_key(&(c, d)) || owner.contains_key(&(d, c)) {
-                continue;
+            // The flip's far corner is the 5 (on the side the pivot was taken from) or
+            // the vertex beyond.
+            let beyond = if flip.c == five {
+                flip.d
+            } else if flip.d == five {
+                flip.c
+            } else {
+                break;
+            };
+            if change > 0 {
+                break;
             }
-            let before = deviation(a, valence[a])
-                + deviation(b, valence[b])
-                + deviation(c, valence[c])
-                + deviation(d, valence[d]);
-            let after = deviation(a, valence[a] - 1)
-                + deviation(b, valence[b] - 1)
-                + deviation(c, valence[c] + 1)
-                + deviation(d, valence[d] + 1);
-            if after >= before || valence[a] <= 3 || valence[b] <= 3 {
-                continue;
+            self.apply(flip);
+            path.push(flip);
+            if change < 0 {
+                return true;
             }
-            let (new1, new2) = ([c, a, d], [d, b, c]);
-            if !fair(&lattice.points, &lattice.normals, new1)
-                || !fair(&lattice.points, &lattice.normals, new2)
-            {
-                continue;
-            }
-            triangles[t1] = new1;
-            triangles[t2] = new2;
-            owner.remove(&(a, b));
-            owner.remove(&(b, a));
-            owner.insert((b, c), t2);
-            owner.insert((a, d), t1);
-            owner.insert((c, d), t2);
-            owner.insert((d, c), t1);
-            valence[a] -= 1;
-            valence[b] -= 1;
-            valence[c] += 1;
-            valence[d] += 1;
-            flipped += 1;
+            // Now `beyond` is the 7 and `pivot` the 5; the next pivot is across the edge
+            // (pivot, beyond) from the old 5.
+            let (new_seven, new_five) = (beyond, pivot);
+            let next = [(new_five, new_seven), (new_seven, new_five)]
+                .into_iter()
+                .filter_map(|e| {
+                    self.owner
+                        .get(&e)
+                        .map(|&t| third(self.triangles[t], e.0, e.1))
+                })
+                .find(|&x| x != five);
+            let Some(next) = next else { break };
+            (seven, five, pivot) = (new_seven, new_five, next);
         }
-        if flipped == 0 {
-            break;
+        while let Some(flip) = path.pop() {
+            self.revert(flip);
         }
+        false
     }
 }
 
