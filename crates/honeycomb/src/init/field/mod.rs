@@ -35,12 +35,6 @@ use tangent::SQRT3;
 /// dislocations in measurements (at 0.5: 1 to 4 points fewer hexagons, twice the time).
 const SAMPLE_SPACING: f64 = 0.7;
 
-/// The orientation field sees S's normals smoothed over about this many lattice spacings
-/// (0: S's own normals). At 1.0 the camel head at 750 cells has 36 field singularities
-/// instead of 41 and a lower edge-length cv, but the field pipeline on a small saddle lost
-/// its honeycomb (one non-convex wall), so it is off.
-const NORMAL_RADIUS: f64 = 0.0;
-
 /// A trivalent hexagonal mesh on `surface` whose cells have edge length about `edge` (model units),
 /// its hex edges following a smooth 6-RoSy field (aligned with S's boundary where S has one and
 /// `follow_boundary` asks for it, and with `strokes` polylines if given), vertices exactly on
@@ -102,7 +96,7 @@ pub fn field_hex_mesh(
         ..
     } = sampling;
     let levels = hierarchy::build(Level::from_triangles(points, normals, areas, &triangles));
-    let orientations = orientation::solve(&levels, &fixed, NORMAL_RADIUS * spacing, seed);
+    let orientations = orientation::solve(&levels, &fixed, seed);
     let origins = position::solve(&levels, &orientations, spacing, seed);
     let mut lattice = extract::extract(&levels[0], &orientations[0], &origins, spacing);
     tidy::tidy(&mut lattice, spacing);

@@ -20,8 +20,6 @@ use std::collections::HashMap;
 /// levels, whose vertices together outnumber the finest level's).
 const SWEEPS_FINEST: usize = 10;
 const SWEEPS_COARSE: usize = 8;
-/// At most this many smoothing steps for the normals the field sees.
-const MAX_NORMAL_STEPS: usize = 64;
 
 /// What a vertex's direction must be.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -155,16 +153,10 @@ impl PointGrid {
 
 /// The field on every level (finest first): solved coarse to fine, then the finest result
 /// carried back up, so that each level holds the final field for the position solve.
-pub fn solve(
-    levels: &[Level],
-    finest_constraints: &[Constraint],
-    smoothing: f64,
-    seed: u64,
-) -> Vec<Vec<Vec3>> {
-    let normals = smoothed_normals(levels, smoothing);
+pub fn solve(levels: &[Level], finest_constraints: &[Constraint], seed: u64) -> Vec<Vec<Vec3>> {
     let mut fixed = vec![finest_constraints.to_vec()];
     for l in 1..levels.len() {
-        let restricted = restrict_constraints(&levels[l - 1], &normals[l], &fixed[l - 1]);
+        let restricted = restrict_constraints(&levels[l - 1], &levels[l], &fixed[l - 1]);
         fixed.push(restricted);
     }
     let top = levels.len() - 1;
@@ -173,88 +165,25 @@ pub fn solve(
     let mut rng = SplitMix::new(seed);
     let mut field: Vec<Vec3> = (0..levels[top].len())
         .map(|i| {
-            let n = normals[top][i];
+            let n = levels[top].normals[i];
             obey(fixed[top][i], n, rng.tangent(n))
         })
         .collect();
     let mut fields = vec![Vec::new(); levels.len()];
     for l in (0..levels.len()).rev() {
         if l < top {
-            field = prolongate(&levels[l], &normals[l], &fields[l + 1], &fixed[l]);
+            field = prolongate(&levels[l], &fields[l + 1], &fixed[l]);
         }
         let sweeps = if l == 0 { SWEEPS_FINEST } else { SWEEPS_COARSE };
         for _ in 0..sweeps {
-            sweep(&levels[l], &normals[l], &mut field, &fixed[l]);
+            sweep(&levels[l], &mut field, &fixed[l]);
         }
         fields[l] = std::mem::take(&mut field);
     }
     for l in 1..levels.len() {
-        fields[l] = restrict_field(&levels[l - 1], &normals[l], &fields[l - 1], &fields[l]);
-    }
-    // Into the true tangent planes.
-    for (field, level) in fields.iter_mut().zip(levels) {
-        for (o, &n) in field.iter_mut().zip(&level.normals) {
-            *o = unit_tangent(*o, n).unwrap_or_else(|| n.any_orthogonal());
-        }
+        fields[l] = restrict_field(&levels[l - 1], &levels[l], &fields[l - 1], &fields[l]);
     }
     fields
-}
-
-/// Each level's normals smoothed over about `radius` (model units) on the finest level, then
-/// carried up as area-weighted means: the field follows S's shape at the scale of the cells,
-/// not every bump smaller than a cell (each of which would cost a pair of singularities).
-fn smoothed_normals(levels: &[Level], radius: f64) -> Vec<Vec<Vec3>> {
-    let fine = &levels[0];
-    let (mut total, mut edges) = (0.0, 0usize);
-    for (i, j) in fine.edges() {
-        total += (fine.points[i] - fine.points[j]).norm();
-        edges += 1;
-    }
-    let h = total / edges.max(1) as f64;
-    let steps = if h > 0.0 && radius > 0.0 {
-        ((radius / h).powi(2).ceil() as usize).min(MAX_NORMAL_STEPS)
-    } else {
-        0
-    };
-    let mut normals = fine.normals.clone();
-    for _ in 0..steps {
-        normals = (0..fine.len())
-            .map(|i| {
-                let mut sum = normals[i] * fine.areas[i];
-                for &j in fine.neighbours(i) {
-                    sum += normals[j as usize] * fine.areas[j as usize];
-                }
-                let u = sum.normalized();
-                if u.is_finite() && u.norm_squared() > 0.5 {
-                    u
-                } else {
-                    normals[i]
-                }
-            })
-            .collect();
-    }
-    let mut all = vec![normals];
-    for l in 1..levels.len() {
-        let (fine, coarse) = (&levels[l - 1], &levels[l]);
-        let mut sums = vec![Vec3::ZERO; coarse.len()];
-        for (i, &c) in fine.parent.iter().enumerate() {
-            sums[c as usize] += all[l - 1][i] * fine.areas[i].max(1e-300);
-        }
-        let up = sums
-            .into_iter()
-            .zip(&coarse.normals)
-            .map(|(s, &n)| {
-                let u = s.normalized();
-                if u.is_finite() && u.norm_squared() > 0.5 {
-                    u
-                } else {
-                    n
-                }
-            })
-            .collect();
-        all.push(up);
-    }
-    all
 }
 
 /// The direction closest to `wish` that the constraint allows.
@@ -270,18 +199,18 @@ fn obey(constraint: Constraint, n: Vec3, wish: Vec3) -> Vec3 {
 }
 
 /// One Gauss-Seidel sweep of the 6-fold mean.
-fn sweep(level: &Level, normals: &[Vec3], field: &mut [Vec3], fixed: &[Constraint]) {
+fn sweep(level: &Level, field: &mut [Vec3], fixed: &[Constraint]) {
     for i in 0..level.len() {
         if let Constraint::Along(_) = fixed[i] {
             continue;
         }
-        let n = normals[i];
+        let n = level.normals[i];
         let mut mean = field[i];
         let mut weight = 0.0;
         for &j in level.neighbours(i) {
             // The six turns of o_j in j's own plane, compared in space: near enough to the
             // turns seen in i's plane for neighbours, and cheaper.
-            let (oj, nj) = (field[j as usize], normals[j as usize]);
+            let (oj, nj) = (field[j as usize], level.normals[j as usize]);
             let mut best = (mean.dot(oj), oj);
             for c in [turned(oj, nj, 0.5, SIN60), turned(oj, nj, -0.5, SIN60)] {
                 let d = mean.dot(c);
@@ -299,12 +228,12 @@ fn sweep(level: &Level, normals: &[Vec3], field: &mut [Vec3], fixed: &[Constrain
 
 /// A coarse vertex is held along a stroke if a child is (their 6-fold mean direction), else
 /// along or across the boundary if a child is (their 12-fold mean).
-fn restrict_constraints(fine: &Level, coarse: &[Vec3], fixed: &[Constraint]) -> Vec<Constraint> {
+fn restrict_constraints(fine: &Level, coarse: &Level, fixed: &[Constraint]) -> Vec<Constraint> {
     let mut along: Vec<Option<Vec3>> = vec![None; coarse.len()];
     let mut boundary: Vec<Option<Vec3>> = vec![None; coarse.len()];
     for (i, constraint) in fixed.iter().enumerate() {
         let c = fine.parent[i] as usize;
-        let n = coarse[c];
+        let n = coarse.normals[c];
         match *constraint {
             Constraint::Free => {}
             Constraint::Along(t) => accumulate(&mut along[c], n, t, closest_sixfold),
@@ -313,7 +242,7 @@ fn restrict_constraints(fine: &Level, coarse: &[Vec3], fixed: &[Constraint]) -> 
     }
     (0..coarse.len())
         .map(|c| {
-            let n = coarse[c];
+            let n = coarse.normals[c];
             let mean = |s: Option<Vec3>| s.and_then(|s| unit_tangent(s, n));
             match (mean(along[c]), mean(boundary[c])) {
                 (Some(t), _) => Constraint::Along(t),
@@ -336,28 +265,26 @@ fn accumulate(sum: &mut Option<Vec3>, n: Vec3, v: Vec3, closest: fn(Vec3, Vec3, 
 }
 
 /// Each coarse vertex's 6-fold mean of its children's directions.
-fn restrict_field(fine: &Level, coarse: &[Vec3], values: &[Vec3], old: &[Vec3]) -> Vec<Vec3> {
+fn restrict_field(fine: &Level, coarse: &Level, values: &[Vec3], old: &[Vec3]) -> Vec<Vec3> {
     let mut sums: Vec<Option<Vec3>> = vec![None; coarse.len()];
     for (i, &v) in values.iter().enumerate() {
         let c = fine.parent[i] as usize;
-        accumulate(&mut sums[c], coarse[c], v, closest_sixfold);
+        accumulate(&mut sums[c], coarse.normals[c], v, closest_sixfold);
     }
     sums.into_iter()
         .enumerate()
-        .map(|(c, s)| s.and_then(|s| unit_tangent(s, coarse[c])).unwrap_or(old[c]))
+        .map(|(c, s)| {
+            s.and_then(|s| unit_tangent(s, coarse.normals[c]))
+                .unwrap_or(old[c])
+        })
         .collect()
 }
 
 /// Each fine vertex starts from its parent's direction, laid into its own tangent plane.
-fn prolongate(
-    fine: &Level,
-    normals: &[Vec3],
-    coarse_field: &[Vec3],
-    fixed: &[Constraint],
-) -> Vec<Vec3> {
+fn prolongate(fine: &Level, coarse_field: &[Vec3], fixed: &[Constraint]) -> Vec<Vec3> {
     (0..fine.len())
         .map(|i| {
-            let n = normals[i];
+            let n = fine.normals[i];
             let o = coarse_field[fine.parent[i] as usize];
             let wish = unit_tangent(o, n).unwrap_or_else(|| n.any_orthogonal());
             obey(fixed[i], n, wish)
@@ -424,7 +351,7 @@ mod tests {
                 }
             })
             .collect();
-        let fields = solve(&levels, &fixed, 0.0, 3);
+        let fields = solve(&levels, &fixed, 3);
         let deviations: Vec<f64> = fields[0]
             .iter()
             .map(|&o| sixfold_angle(at(12.0), o, z()).to_degrees())
