@@ -31,6 +31,10 @@ pub struct Args {
     /// Print one JSON object per size instead of the table.
     #[arg(long)]
     pub json: bool,
+    /// Wall normals as differences of cell points (the node condition exact, a smaller factor;
+    /// normalization weight 0.3) instead of one unknown normal per edge.
+    #[arg(long)]
+    pub cell_points: bool,
     /// Instead of the sizes: one row per variant of the paper's section 4 (parallel meshes,
     /// quads, shading, prescribed axes, minimum edge length) on its test subject.
     #[arg(long)]
@@ -79,9 +83,14 @@ pub fn run(args: Args) -> Result<()> {
     }
     for &size in &args.sizes {
         let (base, surface) = lifted_hex_patch(args.shape, size);
+        let base_options = if args.cell_points {
+            OptimizeOptions::cell_points()
+        } else {
+            OptimizeOptions::default()
+        };
         let options = OptimizeOptions {
             solver: all_iterations(args.iterations),
-            ..OptimizeOptions::default()
+            ..base_options
         };
         let start = Instant::now();
         let optimized = optimize(&base, Some(&surface), &options, &mut |_| {})?;

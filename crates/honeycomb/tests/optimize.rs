@@ -2,7 +2,7 @@
 
 use honeycomb::generate::{hex_disk, lifted_hex_patch, radius_for_vertices, HeightField, Shape};
 use honeycomb::mesh::PolyMesh;
-use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
+use honeycomb::optimize::{optimize, without_cells, OptimizeOptions, Weights};
 use honeycomb::solve::SolverOptions;
 use honeycomb::structure::{measure, quad_planarity, Measures};
 use honeycomb::surface::Surface;
@@ -225,4 +225,98 @@ fn a_minimum_edge_length_holds_after_optimization() {
         ..OptimizeOptions::default()
     };
     assert!(optimize(&base, Some(&surface), &bad, &mut |_| {}).is_err());
+}
+
+/// Wall normals as differences of cell points: the same targets on the three shapes, in five
+/// iterations (the paper's formulation needs about five for 1e-6 degrees on the dome), with a
+/// smaller factor than one normal per edge.
+#[test]
+fn cell_points_make_honeycombs_in_five_iterations_with_a_smaller_factor() {
+    for shape in [Shape::Saddle, Shape::Dome, Shape::Cylinder] {
+        let (base, surface) = lifted_hex_patch(shape, 1500);
+        let solver = SolverOptions {
+            max_iterations: 5,
+            tolerance: 0.0,
+            ..SolverOptions::default()
+        };
+        let cells = OptimizeOptions {
+            solver: solver.clone(),
+            ..OptimizeOptions::cell_points()
+        };
+        let edges = OptimizeOptions {
+            solver,
+            ..OptimizeOptions::default()
+        };
+        let by_cells = optimize(&base, Some(&surface), &cells, &mut |_| {}).unwrap();
+        let by_edges = optimize(&base, Some(&surface), &edges, &mut |_| {}).unwrap();
+        let s = Surface::from_mesh(&surface).unwrap();
+        let m = measure(&by_cells.honeycomb, &s);
+        println!(
+            "{shape:?} cell points: omega {:.2e} delta {:.2e} closeness {:.2e}, factor {} vs {}",
+            m.omega_max_deg,
+            m.delta_max,
+            m.closeness_max,
+            by_cells.solve.factor_nnz,
+            by_edges.solve.factor_nnz
+        );
+        assert_meets_targets(shape, &m);
+        assert!(
+            m.omega_max_deg < 1e-4,
+            "{shape:?}: omega {}",
+            m.omega_max_deg
+        );
+        assert!(
+            (by_cells.solve.factor_nnz as f64) < 0.75 * by_edges.solve.factor_nnz as f64,
+            "{shape:?}: factor {} vs {}",
+            by_cells.solve.factor_nnz,
+            by_edges.solve.factor_nnz
+        );
+    }
+}
+
+/// On an annulus the normals around the hole need not add up to zero: a cut of edges from the
+/// hole to the outer boundary keeps its own normals, and the honeycomb is reached as on a disk.
+#[test]
+fn cell_points_reach_a_honeycomb_around_a_hole() {
+    let r = radius_for_vertices(1500);
+    let disk = hex_disk(r);
+    // Drop the cells whose centres lie within a third of the radius.
+    let inner: Vec<usize> = (0..disk.faces.len())
+        .filter(|&f| disk.face_centroid(f).norm() < r / 3.0)
+        .collect();
+    let mut base = without_cells(&disk, &inner);
+    let field = HeightField {
+        shape: Shape::Dome,
+        d: r,
+    };
+    field.lift(&mut base);
+    let options = OptimizeOptions {
+        solver: SolverOptions {
+            max_iterations: 10,
+            ..SolverOptions::default()
+        },
+        ..OptimizeOptions::cell_points()
+    };
+    let opt = optimize(&base, None, &options, &mut |_| {}).unwrap();
+    let m = measure(&opt.honeycomb, &Surface::from_mesh(&base).unwrap());
+    println!(
+        "annulus cell points: omega {:.2e} delta {:.2e}",
+        m.omega_max_deg, m.delta_max
+    );
+    assert_eq!(opt.connectivity.boundary_loops.len(), 2);
+    assert!(m.omega_max_deg < 0.01, "omega {}", m.omega_max_deg);
+    assert!(m.delta_max < 1e-6, "delta {}", m.delta_max);
+}
+
+#[test]
+fn cell_points_refuse_variants() {
+    let (base, surface) = lifted_hex_patch(Shape::Dome, 300);
+    let options = OptimizeOptions {
+        quads: Some(Default::default()),
+        ..OptimizeOptions::cell_points()
+    };
+    let err = optimize(&base, Some(&surface), &options, &mut |_| {})
+        .err()
+        .expect("refused");
+    assert!(err.to_string().contains("plain honeycomb"), "{err}");
 }

@@ -7,8 +7,10 @@ mod dissection;
 mod normal_matrix;
 mod ordering;
 mod solver;
+mod substitution;
 
 pub use constraint::{jacobian_fd_error, Constraint, Role};
 pub use solver::{
     FamilyResidual, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
 };
+pub use substitution::Substitution;

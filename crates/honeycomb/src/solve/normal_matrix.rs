@@ -3,8 +3,77 @@
 //!
 //! The pattern and a scatter map (for every row, the value slot of every pair of its variables)
 //! are computed once; each iteration only multiplies and adds into the existing value array.
+//! With a [`Substitution`] the rows are rewritten over the solver's unknowns once: each row's
+//! variables become the union of their terms, and each Jacobian entry is spread over those.
 
 use super::constraint::Constraint;
+use super::substitution::Substitution;
+
+/// One family's rows over the solver's unknowns.
+struct MappedRows {
+    /// The family's arity (Jacobian entries per row).
+    arity: usize,
+    /// Row r's unknowns: `vars[var_start[r]..var_start[r + 1]]`.
+    var_start: Vec<usize>,
+    vars: Vec<usize>,
+    /// Jacobian entry (r, a) adds `c * J[r][a]` to the row's unknown at position p, for each
+    /// (p, c) in `spread[spread_start[r * arity + a]..spread_start[r * arity + a + 1]]`.
+    spread_start: Vec<usize>,
+    spread: Vec<(u32, f64)>,
+    /// Row r's value slots, one per pair (p <= q) of its unknowns, from `slot_start[r]`.
+    slot_start: Vec<usize>,
+    slots: Vec<u32>,
+}
+
+impl MappedRows {
+    fn new(c: &dyn Constraint, subst: Option<&Substitution>) -> MappedRows {
+        let (rows, k) = (c.num_rows(), c.arity());
+        let mut x_vars = vec![0usize; k];
+        let mut var_start = Vec::with_capacity(rows + 1);
+        let mut vars = Vec::with_capacity(rows * k);
+        let mut spread_start = Vec::with_capacity(rows * k + 1);
+        let mut spread = Vec::with_capacity(rows * k);
+        var_start.push(0);
+        spread_start.push(0);
+        for row in 0..rows {
+            c.row_variables(row, &mut x_vars);
+            let first = vars.len();
+            for &xv in &x_vars {
+                let identity = [(xv, 1.0)];
+                let terms = subst.map_or(&identity[..], |s| s.terms(xv));
+                for &(yv, coef) in terms {
+                    let p = match vars[first..].iter().position(|&v| v == yv) {
+                        Some(p) => p,
+                        None => {
+                            vars.push(yv);
+                            vars.len() - first - 1
+                        }
+                    };
+                    spread.push((p as u32, coef));
+                }
+                spread_start.push(spread.len());
+            }
+            var_start.push(vars.len());
+        }
+        MappedRows {
+            arity: k,
+            var_start,
+            vars,
+            spread_start,
+            spread,
+            slot_start: Vec::new(),
+            slots: Vec::new(),
+        }
+    }
+
+    fn row(&self, r: usize) -> &[usize] {
+        &self.vars[self.var_start[r]..self.var_start[r + 1]]
+    }
+
+    fn rows(&self) -> usize {
+        self.var_start.len() - 1
+    }
+}
 
 pub struct NormalMatrix {
     pub n: usize,
@@ -13,30 +82,42 @@ pub struct NormalMatrix {
     pub row_idx: Vec<usize>,
     pub values: Vec<f64>,
     diagonal: Vec<usize>,
-    /// Per family: the value slot of each (a <= b) variable pair of each row.
-    scatter: Vec<Vec<u32>>,
-    /// Per family: the variables of each row, row-major.
-    row_vars: Vec<Vec<usize>>,
+    families: Vec<MappedRows>,
+    /// With a substitution: `S^T S` as (slot, value) entries, so that the regularization
+    /// measures a step by how far it moves x (`eps |S dy|^2`), not y.
+    metric: Vec<(u32, f64)>,
+    /// The longest row (scratch for the chain rule).
+    scratch: Vec<f64>,
 }
 
 impl NormalMatrix {
-    pub fn new(n: usize, families: &[Box<dyn Constraint + '_>]) -> NormalMatrix {
-        let row_vars: Vec<Vec<usize>> = families
+    /// The pattern over `n` unknowns; with `subst`, `n` unknowns of y and families over `S y`.
+    pub fn new(
+        n: usize,
+        families: &[Box<dyn Constraint + '_>],
+        subst: Option<&Substitution>,
+    ) -> NormalMatrix {
+        let mut mapped: Vec<MappedRows> = families
             .iter()
-            .map(|c| {
-                let k = c.arity();
-                let mut vars = vec![0usize; c.num_rows() * k];
-                for (row, chunk) in vars.chunks_mut(k).enumerate() {
-                    c.row_variables(row, chunk);
-                }
-                vars
-            })
+            .map(|c| MappedRows::new(c.as_ref(), subst))
             .collect();
         // The upper-triangular entries column by column, in one flat array: count, place,
         // then sort and deduplicate each column (no per-column allocations).
         let each_pair = |visit: &mut dyn FnMut(usize, usize)| {
-            for (c, vars) in families.iter().zip(&row_vars) {
-                for chunk in vars.chunks(c.arity()) {
+            if let Some(s) = subst {
+                for i in 0..s.x_len() {
+                    for &(a, _) in s.terms(i) {
+                        for &(b, _) in s.terms(i) {
+                            if a < b {
+                                visit(a, b);
+                            }
+                        }
+                    }
+                }
+            }
+            for m in &mapped {
+                for r in 0..m.rows() {
+                    let chunk = m.row(r);
                     for &a in chunk {
                         for &b in chunk {
                             if a < b {
@@ -91,22 +172,34 @@ impl NormalMatrix {
             (range.start + pos) as u32
         };
         let diagonal = (0..n).map(|j| slot(j, j) as usize).collect();
-        let scatter = families
-            .iter()
-            .zip(&row_vars)
-            .map(|(c, vars)| {
-                let k = c.arity();
-                let mut map = Vec::with_capacity(c.num_rows() * k * (k + 1) / 2);
-                for chunk in vars.chunks(k) {
-                    for a in 0..k {
-                        for b in a..k {
-                            map.push(slot(chunk[a], chunk[b]));
-                        }
+        let mut longest = 0;
+        for m in &mut mapped {
+            let mut slots = Vec::new();
+            let mut slot_start = Vec::with_capacity(m.rows() + 1);
+            slot_start.push(0);
+            for r in 0..m.rows() {
+                let row = m.row(r);
+                longest = longest.max(row.len());
+                for a in 0..row.len() {
+                    for b in a..row.len() {
+                        slots.push(slot(row[a], row[b]));
                     }
                 }
-                map
-            })
-            .collect();
+                slot_start.push(slots.len());
+            }
+            (m.slots, m.slot_start) = (slots, slot_start);
+        }
+        let mut metric = Vec::new();
+        if let Some(s) = subst {
+            for i in 0..s.x_len() {
+                let t = s.terms(i);
+                for a in 0..t.len() {
+                    for b in a..t.len() {
+                        metric.push((slot(t[a].0, t[b].0), t[a].1 * t[b].1));
+                    }
+                }
+            }
+        }
         let nnz = row_idx.len();
         NormalMatrix {
             n,
@@ -114,8 +207,9 @@ impl NormalMatrix {
             row_idx,
             values: vec![0.0; nnz],
             diagonal,
-            scatter,
-            row_vars,
+            families: mapped,
+            metric,
+            scratch: vec![0.0; longest],
         }
     }
 
@@ -129,7 +223,8 @@ impl NormalMatrix {
         rhs.fill(0.0);
     }
 
-    /// Adds family `f`'s weighted rows: `w^2 J^T J` to the matrix, `-w^2 J^T phi` to `rhs`.
+    /// Adds family `f`'s weighted rows: `w^2 J^T J` to the matrix, `-w^2 J^T phi` to `rhs`
+    /// (`J` over the solver's unknowns: the family's Jacobian spread by the substitution).
     pub fn add_family(
         &mut self,
         f: usize,
@@ -138,29 +233,142 @@ impl NormalMatrix {
         jacobian: &[f64],
         rhs: &mut [f64],
     ) {
-        let k = jacobian.len() / residuals.len().max(1);
         let w2 = weight * weight;
-        let map = &self.scatter[f];
-        let vars = &self.row_vars[f];
-        let npairs = k * (k + 1) / 2;
-        for (row, (&phi, j)) in residuals.iter().zip(jacobian.chunks_exact(k)).enumerate() {
-            let slots = &map[row * npairs..(row + 1) * npairs];
-            let row_vars = &vars[row * k..(row + 1) * k];
-            let mut p = 0;
-            for a in 0..k {
+        let m = &self.families[f];
+        let k = m.arity;
+        let j = &mut self.scratch;
+        for (r, (&phi, jx)) in residuals.iter().zip(jacobian.chunks_exact(k)).enumerate() {
+            let vars = m.row(r);
+            let j = &mut j[..vars.len()];
+            j.fill(0.0);
+            for (a, &ja) in jx.iter().enumerate() {
+                let i = r * k + a;
+                for &(p, c) in &m.spread[m.spread_start[i]..m.spread_start[i + 1]] {
+                    j[p as usize] += c * ja;
+                }
+            }
+            let slots = &m.slots[m.slot_start[r]..m.slot_start[r + 1]];
+            let mut s = 0;
+            for a in 0..j.len() {
                 let ja = w2 * j[a];
-                rhs[row_vars[a]] -= ja * phi;
-                for jb in &j[a..k] {
-                    self.values[slots[p] as usize] += ja * jb;
-                    p += 1;
+                rhs[vars[a]] -= ja * phi;
+                for jb in &j[a..] {
+                    self.values[slots[s] as usize] += ja * jb;
+                    s += 1;
                 }
             }
         }
     }
 
+    /// `eps I`, or with a substitution `eps (S^T S + 1e-6 I)` (the small identity holds the
+    /// directions S does not see, such as moving all cell points together).
     pub fn add_diagonal(&mut self, eps: f64) {
+        if self.metric.is_empty() {
+            for &d in &self.diagonal {
+                self.values[d] += eps;
+            }
+            return;
+        }
+        for &(slot, v) in &self.metric {
+            self.values[slot as usize] += eps * v;
+        }
         for &d in &self.diagonal {
-            self.values[d] += eps;
+            self.values[d] += 1e-6 * eps;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rows `x_a * x_b - 1` over pairs of four unknowns.
+    struct Products;
+
+    impl Constraint for Products {
+        fn name(&self) -> &str {
+            "products"
+        }
+        fn weight(&self) -> f64 {
+            1.5
+        }
+        fn num_rows(&self) -> usize {
+            3
+        }
+        fn arity(&self) -> usize {
+            2
+        }
+        fn row_variables(&self, row: usize, vars: &mut [usize]) {
+            vars.copy_from_slice(&[[0, 1], [1, 2], [2, 3]][row]);
+        }
+        fn evaluate(&self, x: &[f64], residuals: &mut [f64], jacobian: &mut [f64]) {
+            for row in 0..3 {
+                let (a, b) = (row, row + 1);
+                residuals[row] = x[a] * x[b] - 1.0;
+                jacobian[2 * row] = x[b];
+                jacobian[2 * row + 1] = x[a];
+            }
+        }
+    }
+
+    /// Assembled over y with `x = S y`, the matrix is `w^2 S^T J^T J S + eps S^T S (+ 1e-6 eps
+    /// I)` and the right-hand side `-w^2 S^T J^T phi`: compared with dense products.
+    #[test]
+    fn a_substitution_assembles_the_chain_rule() {
+        // x0 = y0, x1 = y1 - y2, x2 = y2 + 2 y0, x3 = y3.
+        let per_x = vec![
+            vec![(0, 1.0)],
+            vec![(1, 1.0), (2, -1.0)],
+            vec![(2, 1.0), (0, 2.0)],
+            vec![(3, 1.0)],
+        ];
+        let s = Substitution::new(4, &per_x);
+        let y = [0.3, 1.2, -0.4, 0.9];
+        let mut x = [0.0; 4];
+        s.apply(&y, &mut x);
+        assert_eq!(x, [0.3, 1.6, -0.4 + 0.6, 0.9]);
+        let families: Vec<Box<dyn Constraint>> = vec![Box::new(Products)];
+        let mut m = NormalMatrix::new(4, &families, Some(&s));
+        let (mut phi, mut jac) = ([0.0; 3], [0.0; 6]);
+        Products.evaluate(&x, &mut phi, &mut jac);
+        let mut rhs = [0.0; 4];
+        m.clear(&mut rhs);
+        m.add_family(0, 1.5, &phi, &jac, &mut rhs);
+        let eps = 0.01;
+        m.add_diagonal(eps);
+        // Dense reference.
+        let mut jx = [[0.0; 4]; 3];
+        for row in 0..3 {
+            jx[row][row] = jac[2 * row];
+            jx[row][row + 1] = jac[2 * row + 1];
+        }
+        let mut sm = [[0.0; 4]; 4];
+        for (i, t) in per_x.iter().enumerate() {
+            for &(j, c) in t {
+                sm[i][j] = c;
+            }
+        }
+        let jy: Vec<[f64; 4]> = jx
+            .iter()
+            .map(|r| std::array::from_fn(|j| (0..4).map(|i| r[i] * sm[i][j]).sum()))
+            .collect();
+        for a in 0..4 {
+            let expected_rhs: f64 = (0..3).map(|r| -2.25 * jy[r][a] * phi[r]).sum();
+            assert!((rhs[a] - expected_rhs).abs() < 1e-12, "rhs {a}");
+            for b in a..4 {
+                let jtj: f64 = (0..3).map(|r| 2.25 * jy[r][a] * jy[r][b]).sum();
+                let sts: f64 = (0..4).map(|i| sm[i][a] * sm[i][b]).sum();
+                let expected = jtj + eps * sts + if a == b { 1e-6 * eps } else { 0.0 };
+                let range = m.col_ptr[b]..m.col_ptr[b + 1];
+                let got = m.row_idx[range.clone()]
+                    .iter()
+                    .position(|&r| r == a)
+                    .map_or(0.0, |p| m.values[range.start + p]);
+                assert!(
+                    (got - expected).abs() < 1e-12,
+                    "entry ({a}, {b}): {got} vs {expected}"
+                );
+            }
         }
     }
 }

@@ -116,7 +116,7 @@ mod tests {
         let surface = Surface::from_mesh(&surface).unwrap();
         let fams = families(&base, &conn, &surface, &Weights::default());
         let n = 3 * (base.vertices.len() + conn.num_edges());
-        let matrix = NormalMatrix::new(n, &fams);
+        let matrix = NormalMatrix::new(n, &fams, None);
         let positions = block_positions(&base, &conn, n);
         assert!(n / 3 >= DISSECTION_MIN_BLOCKS);
         let amd = Cholesky::analyse(&matrix, 3, None).unwrap().factor_nnz();

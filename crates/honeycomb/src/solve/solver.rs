@@ -4,6 +4,7 @@
 use super::cholesky::Cholesky;
 use super::constraint::{Constraint, Role};
 use super::normal_matrix::NormalMatrix;
+use super::substitution::Substitution;
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use serde::Serialize;
@@ -96,6 +97,8 @@ pub struct GuidedProjection<'a> {
     cholesky: Cholesky,
     residuals: Vec<Vec<f64>>,
     jacobians: Vec<Vec<f64>>,
+    /// With a substitution: the families' unknowns `S y` at the last evaluation.
+    substitution: Option<(Substitution, Vec<f64>)>,
     seconds_symbolic: f64,
     iteration: usize,
 }
@@ -114,8 +117,32 @@ impl<'a> GuidedProjection<'a> {
         families: Vec<Box<dyn Constraint + 'a>>,
         positions: Option<&[Option<Vec3>]>,
     ) -> Result<Self> {
+        Self::build(n, families, positions, None)
+    }
+
+    /// A solver over the unknowns y of `substitution`: the families see `S y`. `positions`
+    /// are per block of three unknowns of y.
+    pub fn with_substitution(
+        families: Vec<Box<dyn Constraint + 'a>>,
+        substitution: Substitution,
+        positions: Option<&[Option<Vec3>]>,
+    ) -> Result<Self> {
+        Self::build(
+            substitution.y_len(),
+            families,
+            positions,
+            Some(substitution),
+        )
+    }
+
+    fn build(
+        n: usize,
+        families: Vec<Box<dyn Constraint + 'a>>,
+        positions: Option<&[Option<Vec3>]>,
+        substitution: Option<Substitution>,
+    ) -> Result<Self> {
         let start = Instant::now();
-        let matrix = NormalMatrix::new(n, &families);
+        let matrix = NormalMatrix::new(n, &families, substitution.as_ref());
         let cholesky = Cholesky::analyse(&matrix, 3, positions)?;
         let residuals = families.iter().map(|c| vec![0.0; c.num_rows()]).collect();
         let jacobians = families
@@ -128,6 +155,10 @@ impl<'a> GuidedProjection<'a> {
             cholesky,
             residuals,
             jacobians,
+            substitution: substitution.map(|s| {
+                let x = vec![0.0; s.x_len()];
+                (s, x)
+            }),
             seconds_symbolic: start.elapsed().as_secs_f64(),
             iteration: 0,
         })
@@ -150,8 +181,12 @@ impl<'a> GuidedProjection<'a> {
     }
 
     /// Evaluates every family at `x`; returns (weighted energy, largest condition residual).
-    fn evaluate(&mut self, x: &[f64], eps: f64, eps0: f64) -> (f64, f64) {
+    fn evaluate(&mut self, y: &[f64], eps: f64, eps0: f64) -> (f64, f64) {
         let (mut energy, mut worst) = (0.0, 0.0f64);
+        if let Some((s, x)) = &mut self.substitution {
+            s.apply(y, x);
+        }
+        let x = self.substitution.as_ref().map_or(y, |(_, x)| &x[..]);
         for f in 0..self.families.len() {
             self.families[f].evaluate(x, &mut self.residuals[f], &mut self.jacobians[f]);
             let w = self.weight(f, eps, eps0);
@@ -162,6 +197,29 @@ impl<'a> GuidedProjection<'a> {
             }
         }
         (energy, worst)
+    }
+
+    /// The families' linearization data refreshed at the solver's unknowns `y`.
+    fn refresh(&mut self, y: &[f64]) {
+        if let Some((s, x)) = &mut self.substitution {
+            s.apply(y, x);
+        }
+        let x = self.substitution.as_ref().map_or(y, |(_, x)| &x[..]);
+        for c in &mut self.families {
+            c.refresh(x);
+        }
+    }
+
+    /// The families' unknowns for the solver's unknowns `y` (`S y`, or `y` itself).
+    pub fn family_unknowns(&self, y: &[f64]) -> Vec<f64> {
+        match &self.substitution {
+            Some((s, _)) => {
+                let mut x = vec![0.0; s.x_len()];
+                s.apply(y, &mut x);
+                x
+            }
+            None => y.to_vec(),
+        }
     }
 
     /// Runs the iteration on `x` in place; `progress` sees every iteration.
@@ -199,9 +257,7 @@ impl<'a> GuidedProjection<'a> {
         let (eps, eps0) = (state.eps, state.eps0);
         self.iteration = state.history.len();
         let t = Instant::now();
-        for c in &mut self.families {
-            c.refresh(x);
-        }
+        self.refresh(x);
         state.t_other += t.elapsed();
 
         let t = Instant::now();
@@ -274,9 +330,7 @@ impl<'a> GuidedProjection<'a> {
     /// Residuals at `x` (linearization refreshed) and the timings of `state`.
     pub fn report(&mut self, x: &[f64], state: SolveState, opts: &SolverOptions) -> SolveReport {
         let t = Instant::now();
-        for c in &mut self.families {
-            c.refresh(x);
-        }
+        self.refresh(x);
         let (_, max_residual) = self.evaluate(x, state.eps, state.eps0);
         let converged = state.converged || max_residual < opts.tolerance;
         let families = self

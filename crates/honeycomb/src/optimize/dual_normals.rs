@@ -1,0 +1,285 @@
+//! Wall normals as differences of cell points: `n_e = c_left - c_right` for an edge between two
+//! cells (the reciprocal diagram). The node condition `n_ij + n_ik + n_il = 0` then holds at
+//! every inner node by construction, and the solver has one point per cell instead of one
+//! normal per edge: about 1.5 V instead of 2.5 V blocks of unknowns, and a third less fill.
+//! Boundary edges, and a cut of edges from each inner boundary loop to the outer one, keep
+//! normals of their own: around a hole the normals need not add up to zero, which differences
+//! of cell points could not express.
+
+use crate::constraints::Layout;
+use crate::error::{Error, Result};
+use crate::geometry::Vec3;
+use crate::mesh::{Connectivity, PolyMesh};
+use crate::solve::Substitution;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+use std::collections::VecDeque;
+
+pub struct DualNormals {
+    pub substitution: Substitution,
+    /// The solver's unknowns: vertices, cell points, free normals, then the rest of x as is.
+    pub y: Vec<f64>,
+    /// A position per block of three unknowns of y (for the ordering).
+    pub positions: Vec<Option<Vec3>>,
+}
+
+/// The cell on the left of each edge's stored direction (the face holding `a -> b`) and on its
+/// right.
+fn sides(mesh: &PolyMesh, conn: &Connectivity) -> Vec<[Option<usize>; 2]> {
+    let mut sides = vec![[None, None]; conn.num_edges()];
+    for (f, face) in mesh.faces.iter().enumerate() {
+        for (k, &e) in conn.face_edges[f].iter().enumerate() {
+            let from = face[k];
+            let slot = if conn.edges[e][0] == from { 0 } else { 1 };
+            sides[e][slot] = Some(f);
+        }
+    }
+    sides
+}
+
+/// Edges that keep their own normal: the boundary, and per boundary loop after the longest a
+/// shortest path of edges through the cells from that loop to the longest.
+fn free_edges(mesh: &PolyMesh, conn: &Connectivity, sides: &[[Option<usize>; 2]]) -> Vec<bool> {
+    let mut free: Vec<bool> = sides
+        .iter()
+        .map(|s| s[0].is_none() || s[1].is_none())
+        .collect();
+    if conn.boundary_loops.len() < 2 {
+        return free;
+    }
+    let loop_cells = |lp: &[usize]| -> Vec<usize> {
+        lp.iter()
+            .flat_map(|&v| conn.vertex_edges[v].iter())
+            .filter(|&&e| sides[e].contains(&None))
+            .flat_map(|&e| sides[e].iter().flatten().copied())
+            .collect()
+    };
+    let outer = (0..conn.boundary_loops.len())
+        .max_by_key(|&l| conn.boundary_loops[l].len())
+        .unwrap_or(0);
+    let mut is_target = vec![false; mesh.faces.len()];
+    for c in loop_cells(&conn.boundary_loops[outer]) {
+        is_target[c] = true;
+    }
+    for (l, lp) in conn.boundary_loops.iter().enumerate() {
+        if l == outer {
+            continue;
+        }
+        // Breadth-first over cells through edges between two cells.
+        let mut came: Vec<Option<(usize, usize)>> = vec![None; mesh.faces.len()];
+        let mut seen = vec![false; mesh.faces.len()];
+        let mut queue = VecDeque::new();
+        for c in loop_cells(lp) {
+            if !seen[c] {
+                seen[c] = true;
+                queue.push_back(c);
+            }
+        }
+        let mut reached = None;
+        while let Some(c) = queue.pop_front() {
+            if is_target[c] {
+                reached = Some(c);
+                break;
+            }
+            for &e in &conn.face_edges[c] {
+                if let [Some(a), Some(b)] = sides[e] {
+                    let d = if a == c { b } else { a };
+                    if !seen[d] {
+                        seen[d] = true;
+                        came[d] = Some((c, e));
+                        queue.push_back(d);
+                    }
+                }
+            }
+        }
+        let mut c = reached;
+        while let Some(cell) = c {
+            c = came[cell].map(|(prev, e)| {
+                free[e] = true;
+                prev
+            });
+        }
+    }
+    free
+}
+
+/// The substitution for the honeycomb's unknowns `x` (laid out by `layout`, followed by
+/// `x.len() - layout.len()` unknowns of variants, kept as they are), and its starting point:
+/// the cell points that best reproduce the normals in `x` (least squares on the cells' graph).
+pub fn dual_normals(
+    mesh: &PolyMesh,
+    conn: &Connectivity,
+    layout: Layout,
+    x: &[f64],
+) -> Result<DualNormals> {
+    let (nv, ne, nf) = (mesh.vertices.len(), conn.num_edges(), mesh.faces.len());
+    let sides = sides(mesh, conn);
+    let free = free_edges(mesh, conn, &sides);
+    let mut free_index = vec![usize::MAX; ne];
+    let mut nfree = 0;
+    for e in 0..ne {
+        if free[e] {
+            free_index[e] = nfree;
+            nfree += 1;
+        }
+    }
+    let cell = |f: usize| 3 * (nv + f);
+    let own = |e: usize| 3 * (nv + nf + free_index[e]);
+    let extra = x.len() - layout.len();
+    let y_len = 3 * (nv + nf + nfree) + extra;
+    let mut per_x: Vec<Vec<(usize, f64)>> = Vec::with_capacity(x.len());
+    for i in 0..3 * nv {
+        per_x.push(vec![(i, 1.0)]);
+    }
+    for e in 0..ne {
+        for k in 0..3 {
+            per_x.push(match sides[e] {
+                [Some(l), Some(r)] if !free[e] => vec![(cell(l) + k, 1.0), (cell(r) + k, -1.0)],
+                _ => vec![(own(e) + k, 1.0)],
+            });
+        }
+    }
+    for i in 0..extra {
+        per_x.push(vec![(3 * (nv + nf + nfree) + i, 1.0)]);
+    }
+    let mut y = vec![0.0; y_len];
+    y[..3 * nv].copy_from_slice(&x[..3 * nv]);
+    for e in (0..ne).filter(|&e| free[e]) {
+        y[own(e)..own(e) + 3].copy_from_slice(&x[layout.normal(e)..layout.normal(e) + 3]);
+    }
+    y[3 * (nv + nf + nfree)..].copy_from_slice(&x[layout.len()..]);
+    fit_cell_points(&sides, &free, layout, x, nf, &mut y[3 * nv..3 * (nv + nf)])?;
+    let mut positions: Vec<Option<Vec3>> = mesh.vertices.iter().map(|&p| Some(p)).collect();
+    positions.extend(mesh.faces.iter().map(|f| {
+        let sum = f.iter().fold(Vec3::ZERO, |s, &v| s + mesh.vertices[v]);
+        Some(sum * (1.0 / f.len() as f64))
+    }));
+    positions.extend((0..ne).filter(|&e| free[e]).map(|e| {
+        let [a, b] = conn.edges[e];
+        Some((mesh.vertices[a] + mesh.vertices[b]) * 0.5)
+    }));
+    positions.resize(y_len.div_ceil(3), None);
+    Ok(DualNormals {
+        substitution: Substitution::new(y_len, &per_x),
+        y,
+        positions,
+    })
+}
+
+/// Least squares `sum |c_l - c_r - n_e|^2` over the edges between two cells (plus a tiny pull
+/// to the origin that fixes the free translation): one sparse Cholesky of the cells' graph
+/// Laplacian, three right-hand sides.
+fn fit_cell_points(
+    sides: &[[Option<usize>; 2]],
+    free: &[bool],
+    layout: Layout,
+    x: &[f64],
+    nf: usize,
+    cells: &mut [f64],
+) -> Result<()> {
+    let mut triplets: Vec<Triplet<usize, usize, f64>> =
+        (0..nf).map(|f| Triplet::new(f, f, 1e-9)).collect();
+    let mut rhs = Mat::<f64>::zeros(nf, 3);
+    for (e, s) in sides.iter().enumerate() {
+        let [Some(l), Some(r)] = *s else { continue };
+        if free[e] {
+            continue;
+        }
+        for (a, b, v) in [(l, l, 1.0), (r, r, 1.0), (l, r, -1.0), (r, l, -1.0)] {
+            triplets.push(Triplet::new(a, b, v));
+        }
+        let n = layout.normal_at(x, e).to_array();
+        for k in 0..3 {
+            rhs[(l, k)] += n[k];
+            rhs[(r, k)] -= n[k];
+        }
+    }
+    let fail = |what: &str| Error::Solver(format!("cell points for the wall normals: {what}"));
+    let laplacian = SparseColMat::<usize, f64>::try_new_from_triplets(nf, nf, &triplets)
+        .map_err(|e| fail(&format!("{e:?}")))?;
+    let llt = laplacian
+        .sp_cholesky(Side::Lower)
+        .map_err(|e| fail(&format!("{e:?}")))?;
+    let solution = faer::linalg::solvers::Solve::solve(&llt, &rhs);
+    for f in 0..nf {
+        for k in 0..3 {
+            cells[3 * f + k] = solution[(f, k)];
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::hex_disk;
+    use crate::optimize::{node_walls, without_cells};
+
+    fn annulus() -> (PolyMesh, Connectivity) {
+        let disk = hex_disk(8.0);
+        let inner: Vec<usize> = (0..disk.faces.len())
+            .filter(|&f| disk.face_centroid(f).norm() < 3.0)
+            .collect();
+        let mesh = without_cells(&disk, &inner);
+        let conn = Connectivity::build(&mesh).unwrap();
+        (mesh, conn)
+    }
+
+    /// For any cell points, the normals `S y` add up to zero at every node none of whose
+    /// walls is free; the boundary is free, and so is a cut from the hole outwards.
+    #[test]
+    fn cell_points_meet_the_node_condition_and_the_hole_gets_a_cut() {
+        let (mesh, conn) = annulus();
+        assert_eq!(conn.boundary_loops.len(), 2);
+        let sides = sides(&mesh, &conn);
+        let free = free_edges(&mesh, &conn, &sides);
+        let cut = (0..conn.num_edges())
+            .filter(|&e| free[e] && !conn.is_boundary_edge(e))
+            .count();
+        assert!(cut >= 2, "{cut} inner edges free");
+        assert!((0..conn.num_edges()).all(|e| !conn.is_boundary_edge(e) || free[e]));
+        let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+        let x0 = vec![0.0; layout.len()];
+        let d = dual_normals(&mesh, &conn, layout, &x0).unwrap();
+        let y: Vec<f64> = (0..d.y.len())
+            .map(|i| ((i * 7919) % 1000) as f64 / 500.0 - 1.0)
+            .collect();
+        let mut x = vec![0.0; layout.len()];
+        d.substitution.apply(&y, &mut x);
+        let (node3, _) = node_walls(&conn);
+        let mut checked = 0;
+        for walls in &node3 {
+            if walls.iter().any(|&(e, _)| free[e]) {
+                continue;
+            }
+            let sum = walls.iter().fold(Vec3::ZERO, |s, &(e, sign)| {
+                s + layout.normal_at(&x, e) * sign
+            });
+            assert!(sum.norm() < 1e-12, "node sum {sum:?}");
+            checked += 1;
+        }
+        assert!(checked > 100, "{checked} nodes checked");
+    }
+
+    /// Normals that are differences of cell points come back exactly from the fit.
+    #[test]
+    fn the_fit_recovers_cell_point_normals() {
+        let (mesh, conn) = annulus();
+        let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+        let x0 = vec![0.0; layout.len()];
+        let d = dual_normals(&mesh, &conn, layout, &x0).unwrap();
+        let y: Vec<f64> = (0..d.y.len())
+            .map(|i| ((i * 104729) % 997) as f64 / 300.0)
+            .collect();
+        let mut x = vec![0.0; layout.len()];
+        d.substitution.apply(&y, &mut x);
+        let fitted = dual_normals(&mesh, &conn, layout, &x).unwrap();
+        let mut again = vec![0.0; layout.len()];
+        fitted.substitution.apply(&fitted.y, &mut again);
+        let worst = x
+            .iter()
+            .zip(&again)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(worst < 1e-6, "normals differ by {worst}");
+    }
+}
