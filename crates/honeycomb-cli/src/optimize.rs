@@ -8,7 +8,7 @@ use honeycomb::mesh::{
 };
 use honeycomb::optimize::{
     optimize, optimize_made_mesh, shading_axes, unit_light, AxesOptions, OptimizeOptions,
-    ParallelOptions, QuadOptions, QuadPattern, Weights,
+    ParallelOptions, QuadOptions, QuadPattern, WallNormals, Weights, CELL_POINTS_NORMALIZATION,
 };
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
@@ -48,9 +48,9 @@ pub struct SolveArgs {
     /// Weight of wall consistency (the wall contains its edge).
     #[arg(long, default_value_t = Weights::default().consistency, allow_negative_numbers = true)]
     pub w_cons: f64,
-    /// Weight of the unit-normal condition.
-    #[arg(long, default_value_t = Weights::default().normalization, allow_negative_numbers = true)]
-    pub w_norm: f64,
+    /// Weight of the unit-normal condition [default: 10; 0.3 with --cell-points].
+    #[arg(long, allow_negative_numbers = true)]
+    pub w_norm: Option<f64>,
     /// Weight of closeness to the reference surface.
     #[arg(long, default_value_t = Weights::default().closeness, allow_negative_numbers = true)]
     pub w_close: f64,
@@ -61,6 +61,12 @@ pub struct SolveArgs {
     /// 3; pipeline tries 0 next if 3 gives no honeycomb].
     #[arg(long, allow_negative_numbers = true)]
     pub w_fair: Option<f64>,
+    /// Solve for one point per cell instead of one normal per edge: each wall normal is the
+    /// difference of its two cells' points, so the 120-degree condition holds at inner nodes
+    /// by construction; a third less fill and more accuracy per iteration. Plain honeycombs
+    /// only (not with --parallel, --quads, --axes or --light).
+    #[arg(long)]
+    pub cell_points: bool,
     /// Keep every edge at least this long (model units), by dummy unknowns [default with
     /// --light: 0.3 mean edge lengths].
     #[arg(long, allow_negative_numbers = true)]
@@ -191,6 +197,15 @@ impl SolveArgs {
                 )));
             }
         }
+        let variant =
+            self.parallel || self.quads.is_some() || self.axes.is_some() || self.light.is_some();
+        if self.cell_points && variant {
+            return Err(Error::Parameter(
+                "--cell-points: only for the plain honeycomb (not with --parallel, --quads, \
+                 --axes or --light)"
+                    .into(),
+            ));
+        }
         if !self.eps.is_finite() || self.eps <= 0.0 || self.eps > 1e3 {
             return Err(Error::Parameter(format!(
                 "--eps {}: expected a positive number, typically 1e-3",
@@ -200,7 +215,11 @@ impl SolveArgs {
         let weights = Weights {
             angle: self.w_angle,
             consistency: self.w_cons,
-            normalization: self.w_norm,
+            normalization: self.w_norm.unwrap_or(if self.cell_points {
+                CELL_POINTS_NORMALIZATION
+            } else {
+                Weights::default().normalization
+            }),
             closeness: self.w_close,
             boundary: self.w_boundary,
             fairness: self.w_fair.unwrap_or(Weights::default().fairness),
@@ -248,6 +267,11 @@ impl SolveArgs {
                 weight: self.w_parallel,
                 depth_weight: self.w_depth,
             }),
+            wall_normals: if self.cell_points {
+                WallNormals::CellPoints
+            } else {
+                WallNormals::PerEdge
+            },
             ..OptimizeOptions::default()
         })
     }

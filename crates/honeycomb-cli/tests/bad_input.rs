@@ -413,3 +413,18 @@ fn bench_with_ten_vertices() {
         "a later bad size is rejected before any run"
     );
 }
+
+#[test]
+fn cell_points_with_a_variant() {
+    let dir = TempDir::new("cell_points_with_a_variant");
+    optimize_with_fails(
+        &dir,
+        &["--cell-points", "--quads", "zigzag"],
+        &["--cell-points", "plain honeycomb"],
+    );
+    optimize_with_fails(
+        &dir,
+        &["--cell-points", "--parallel"],
+        &["--cell-points", "--parallel"],
+    );
+}

@@ -552,3 +552,27 @@ fn the_recomputing_helpers_measure_what_they_claim() {
     assert!(r.omega_max_deg > 1.0, "{}", r.omega_max_deg);
     assert!(r.closeness_max > 0.1, "{}", r.closeness_max);
 }
+
+/// `--cell-points`: the same outputs, a honeycomb, and the weight it used in report.json.
+#[test]
+fn demo_with_cell_points_writes_a_honeycomb() {
+    let dir = TempDir::new("demo_with_cell_points");
+    let out = dir.join("out");
+    let output = small_demo(
+        &out,
+        &["--cell-points", "--shape", "dome", "--iterations", "6"],
+    );
+    assert_success(&output, "demo --cell-points");
+    let r = report(&out);
+    assert_sane(&r, "demo --cell-points");
+    assert!(number(&r, "omega_max_deg") < 1e-6, "{r}");
+    assert_eq!(r["weights"]["normalization"].as_f64(), Some(0.3), "{r}");
+    // An explicit weight wins.
+    let out2 = dir.join("out2");
+    let output = small_demo(&out2, &["--cell-points", "--w-norm", "1"]);
+    assert_success(&output, "demo --cell-points --w-norm 1");
+    assert_eq!(
+        report(&out2)["weights"]["normalization"].as_f64(),
+        Some(1.0)
+    );
+}
