@@ -150,10 +150,7 @@ pub fn dual_normals(
     y[3 * (nv + nf + nfree)..].copy_from_slice(&x[layout.len()..]);
     fit_cell_points(&sides, &free, layout, x, nf, &mut y[3 * nv..3 * (nv + nf)])?;
     let mut positions: Vec<Option<Vec3>> = mesh.vertices.iter().map(|&p| Some(p)).collect();
-    positions.extend(mesh.faces.iter().map(|f| {
-        let sum = f.iter().fold(Vec3::ZERO, |s, &v| s + mesh.vertices[v]);
-        Some(sum * (1.0 / f.len() as f64))
-    }));
+    positions.extend((0..nf).map(|f| Some(mesh.face_centroid(f))));
     positions.extend((0..ne).filter(|&e| free[e]).map(|e| {
         let [a, b] = conn.edges[e];
         Some((mesh.vertices[a] + mesh.vertices[b]) * 0.5)

@@ -27,7 +27,23 @@ struct MappedRows {
 
 impl MappedRows {
     fn new(c: &dyn Constraint, subst: Option<&Substitution>) -> MappedRows {
-        let (rows, k) = (c.num_rows(), c.arity());
+        MappedRows::spread(c.num_rows(), c.arity(), |r, v| c.row_variables(r, v), subst)
+    }
+
+    /// The rows `x_i`, one per unknown of x, over y: the sum of their squares is `|S y|^2`,
+    /// the measure of a step.
+    fn of_substitution(s: &Substitution) -> MappedRows {
+        MappedRows::spread(s.x_len(), 1, |r, v| v[0] = r, Some(s))
+    }
+
+    /// `rows` rows of `arity` unknowns of x each (`row_variables`), spread over y by `subst`.
+    fn spread(
+        rows: usize,
+        arity: usize,
+        row_variables: impl Fn(usize, &mut [usize]),
+        subst: Option<&Substitution>,
+    ) -> MappedRows {
+        let k = arity;
         let mut x_vars = vec![0usize; k];
         let mut var_start = Vec::with_capacity(rows + 1);
         let mut vars = Vec::with_capacity(rows * k);
@@ -36,7 +52,7 @@ impl MappedRows {
         var_start.push(0);
         spread_start.push(0);
         for row in 0..rows {
-            c.row_variables(row, &mut x_vars);
+            row_variables(row, &mut x_vars);
             let first = vars.len();
             for &xv in &x_vars {
                 let identity = [(xv, 1.0)];
@@ -66,6 +82,42 @@ impl MappedRows {
         }
     }
 
+    /// Adds `w2 J^T J` of these rows to `values` and, given `(rhs, phi)`, `-w2 J^T phi` to
+    /// `rhs`; `J` is the rows' Jacobian over x (`jacobian`, row-major) spread over y.
+    fn accumulate(
+        &self,
+        w2: f64,
+        jacobian: &[f64],
+        values: &mut [f64],
+        mut rhs: Option<(&mut [f64], &[f64])>,
+        scratch: &mut [f64],
+    ) {
+        let k = self.arity;
+        for (r, jx) in jacobian.chunks_exact(k).enumerate() {
+            let vars = self.row(r);
+            let j = &mut scratch[..vars.len()];
+            j.fill(0.0);
+            for (a, &ja) in jx.iter().enumerate() {
+                let i = r * k + a;
+                for &(p, c) in &self.spread[self.spread_start[i]..self.spread_start[i + 1]] {
+                    j[p as usize] += c * ja;
+                }
+            }
+            let slots = &self.slots[self.slot_start[r]..self.slot_start[r + 1]];
+            let mut s = 0;
+            for a in 0..j.len() {
+                let ja = w2 * j[a];
+                if let Some((rhs, phi)) = &mut rhs {
+                    rhs[vars[a]] -= ja * phi[r];
+                }
+                for jb in &j[a..] {
+                    values[slots[s] as usize] += ja * jb;
+                    s += 1;
+                }
+            }
+        }
+    }
+
     fn row(&self, r: usize) -> &[usize] {
         &self.vars[self.var_start[r]..self.var_start[r + 1]]
     }
@@ -83,9 +135,9 @@ pub struct NormalMatrix {
     pub values: Vec<f64>,
     diagonal: Vec<usize>,
     families: Vec<MappedRows>,
-    /// With a substitution: `S^T S` as (slot, value) entries, so that the regularization
-    /// measures a step by how far it moves x (`eps |S dy|^2`), not y.
-    metric: Vec<(u32, f64)>,
+    /// With a substitution: the rows `x_i` over y and their unit Jacobian, so that the
+    /// regularization measures a step by how far it moves x (`eps |S dy|^2`), not y.
+    metric: Option<(MappedRows, Vec<f64>)>,
     /// The longest row (scratch for the chain rule).
     scratch: Vec<f64>,
 }
@@ -97,24 +149,15 @@ impl NormalMatrix {
         families: &[Box<dyn Constraint + '_>],
         subst: Option<&Substitution>,
     ) -> NormalMatrix {
+        // The families' rows, then (with a substitution) the step measure's.
         let mut mapped: Vec<MappedRows> = families
             .iter()
             .map(|c| MappedRows::new(c.as_ref(), subst))
+            .chain(subst.map(MappedRows::of_substitution))
             .collect();
         // The upper-triangular entries column by column, in one flat array: count, place,
         // then sort and deduplicate each column (no per-column allocations).
         let each_pair = |visit: &mut dyn FnMut(usize, usize)| {
-            if let Some(s) = subst {
-                for i in 0..s.x_len() {
-                    for &(a, _) in s.terms(i) {
-                        for &(b, _) in s.terms(i) {
-                            if a < b {
-                                visit(a, b);
-                            }
-                        }
-                    }
-                }
-            }
             for m in &mapped {
                 for r in 0..m.rows() {
                     let chunk = m.row(r);
@@ -189,17 +232,7 @@ impl NormalMatrix {
             }
             (m.slots, m.slot_start) = (slots, slot_start);
         }
-        let mut metric = Vec::new();
-        if let Some(s) = subst {
-            for i in 0..s.x_len() {
-                let t = s.terms(i);
-                for a in 0..t.len() {
-                    for b in a..t.len() {
-                        metric.push((slot(t[a].0, t[b].0), t[a].1 * t[b].1));
-                    }
-                }
-            }
-        }
+        let metric = subst.and_then(|s| Some((mapped.pop()?, vec![1.0; s.x_len()])));
         let nnz = row_idx.len();
         NormalMatrix {
             n,
@@ -233,47 +266,27 @@ impl NormalMatrix {
         jacobian: &[f64],
         rhs: &mut [f64],
     ) {
-        let w2 = weight * weight;
-        let m = &self.families[f];
-        let k = m.arity;
-        let j = &mut self.scratch;
-        for (r, (&phi, jx)) in residuals.iter().zip(jacobian.chunks_exact(k)).enumerate() {
-            let vars = m.row(r);
-            let j = &mut j[..vars.len()];
-            j.fill(0.0);
-            for (a, &ja) in jx.iter().enumerate() {
-                let i = r * k + a;
-                for &(p, c) in &m.spread[m.spread_start[i]..m.spread_start[i + 1]] {
-                    j[p as usize] += c * ja;
-                }
-            }
-            let slots = &m.slots[m.slot_start[r]..m.slot_start[r + 1]];
-            let mut s = 0;
-            for a in 0..j.len() {
-                let ja = w2 * j[a];
-                rhs[vars[a]] -= ja * phi;
-                for jb in &j[a..] {
-                    self.values[slots[s] as usize] += ja * jb;
-                    s += 1;
-                }
-            }
-        }
+        self.families[f].accumulate(
+            weight * weight,
+            jacobian,
+            &mut self.values,
+            Some((rhs, residuals)),
+            &mut self.scratch,
+        );
     }
 
     /// `eps I`, or with a substitution `eps (S^T S + 1e-6 I)` (the small identity holds the
     /// directions S does not see, such as moving all cell points together).
     pub fn add_diagonal(&mut self, eps: f64) {
-        if self.metric.is_empty() {
-            for &d in &self.diagonal {
-                self.values[d] += eps;
+        let identity = match &self.metric {
+            Some((rows, unit)) => {
+                rows.accumulate(eps, unit, &mut self.values, None, &mut self.scratch);
+                1e-6 * eps
             }
-            return;
-        }
-        for &(slot, v) in &self.metric {
-            self.values[slot as usize] += eps * v;
-        }
+            None => eps,
+        };
         for &d in &self.diagonal {
-            self.values[d] += 1e-6 * eps;
+            self.values[d] += identity;
         }
     }
 }

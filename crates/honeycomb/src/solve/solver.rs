@@ -180,15 +180,16 @@ impl<'a> GuidedProjection<'a> {
         }
     }
 
-    /// Evaluates every family at `x`; returns (weighted energy, largest condition residual).
+    /// Evaluates every family at the solver's unknowns `y`; returns (weighted energy, largest
+    /// condition residual).
     fn evaluate(&mut self, y: &[f64], eps: f64, eps0: f64) -> (f64, f64) {
         let (mut energy, mut worst) = (0.0, 0.0f64);
-        if let Some((s, x)) = &mut self.substitution {
-            s.apply(y, x);
+        let x = family_point(&mut self.substitution, y);
+        let values = self.residuals.iter_mut().zip(&mut self.jacobians);
+        for (c, (residuals, jacobian)) in self.families.iter().zip(values) {
+            c.evaluate(x, residuals, jacobian);
         }
-        let x = self.substitution.as_ref().map_or(y, |(_, x)| &x[..]);
         for f in 0..self.families.len() {
-            self.families[f].evaluate(x, &mut self.residuals[f], &mut self.jacobians[f]);
             let w = self.weight(f, eps, eps0);
             let sq: f64 = self.residuals[f].iter().map(|r| r * r).sum();
             energy += w * w * sq;
@@ -201,10 +202,7 @@ impl<'a> GuidedProjection<'a> {
 
     /// The families' linearization data refreshed at the solver's unknowns `y`.
     fn refresh(&mut self, y: &[f64]) {
-        if let Some((s, x)) = &mut self.substitution {
-            s.apply(y, x);
-        }
-        let x = self.substitution.as_ref().map_or(y, |(_, x)| &x[..]);
+        let x = family_point(&mut self.substitution, y);
         for c in &mut self.families {
             c.refresh(x);
         }
@@ -361,6 +359,21 @@ impl<'a> GuidedProjection<'a> {
             families,
             history: state.history,
         }
+    }
+}
+
+/// The families' unknowns at the solver's unknowns `y`: `S y` (into the substitution's
+/// buffer) or `y` itself.
+fn family_point<'b>(
+    substitution: &'b mut Option<(Substitution, Vec<f64>)>,
+    y: &'b [f64],
+) -> &'b [f64] {
+    match substitution {
+        Some((s, x)) => {
+            s.apply(y, x);
+            x
+        }
+        None => y,
     }
 }
 
