@@ -17,7 +17,8 @@ use std::collections::VecDeque;
 
 pub struct DualNormals {
     pub substitution: Substitution,
-    /// The solver's unknowns: vertices, cell points, free normals, then the rest of x as is.
+    /// The solver's unknowns: vertices, cell points (but for one per group, held at the
+    /// origin), free normals, then the rest of x as is.
     pub y: Vec<f64>,
     /// A position per block of three unknowns of y (for the ordering).
     pub positions: Vec<Option<Vec3>>,
@@ -123,10 +124,22 @@ pub fn dual_normals(
             nfree += 1;
         }
     }
-    let cell = |f: usize| 3 * (nv + f);
-    let own = |e: usize| 3 * (nv + nf + free_index[e]);
+    // Normals see only differences of cell points: one point per group of cells that the
+    // differences link stays at the origin, so that the solver has no free translation left
+    // (held by nothing but its tiny regularization, it made pivots vanish in roundoff).
+    let group = cell_groups(conn, &sides, &free, nf);
+    let pinned = |f: usize| group[f] == f;
+    let mut cell_index = vec![None; nf];
+    let mut ncells = 0;
+    for f in (0..nf).filter(|&f| !pinned(f)) {
+        cell_index[f] = Some(ncells);
+        ncells += 1;
+    }
+    let cell = |f: usize| cell_index[f].map(|c| 3 * (nv + c));
+    let own = |e: usize| 3 * (nv + ncells + free_index[e]);
+    let rest = 3 * (nv + ncells + nfree);
     let extra = x.len() - layout.len();
-    let y_len = 3 * (nv + nf + nfree) + extra;
+    let y_len = rest + extra;
     let mut per_x: Vec<Vec<(usize, f64)>> = Vec::with_capacity(x.len());
     for i in 0..3 * nv {
         per_x.push(vec![(i, 1.0)]);
@@ -134,23 +147,37 @@ pub fn dual_normals(
     for e in 0..ne {
         for k in 0..3 {
             per_x.push(match sides[e] {
-                [Some(l), Some(r)] if !free[e] => vec![(cell(l) + k, 1.0), (cell(r) + k, -1.0)],
+                [Some(l), Some(r)] if !free[e] => [(cell(l), 1.0), (cell(r), -1.0)]
+                    .into_iter()
+                    .filter_map(|(c, sign)| c.map(|c| (c + k, sign)))
+                    .collect(),
                 _ => vec![(own(e) + k, 1.0)],
             });
         }
     }
     for i in 0..extra {
-        per_x.push(vec![(3 * (nv + nf + nfree) + i, 1.0)]);
+        per_x.push(vec![(rest + i, 1.0)]);
     }
     let mut y = vec![0.0; y_len];
     y[..3 * nv].copy_from_slice(&x[..3 * nv]);
     for e in (0..ne).filter(|&e| free[e]) {
         y[own(e)..own(e) + 3].copy_from_slice(&x[layout.normal(e)..layout.normal(e) + 3]);
     }
-    y[3 * (nv + nf + nfree)..].copy_from_slice(&x[layout.len()..]);
-    fit_cell_points(&sides, &free, layout, x, nf, &mut y[3 * nv..3 * (nv + nf)])?;
+    y[rest..].copy_from_slice(&x[layout.len()..]);
+    let points = fit_cell_points(&sides, &free, layout, x, nf)?;
+    for f in 0..nf {
+        if let Some(c) = cell(f) {
+            // Relative to the group's pinned point, which is the origin.
+            let p = points[f] - points[group[f]];
+            y[c..c + 3].copy_from_slice(&p.to_array());
+        }
+    }
     let mut positions: Vec<Option<Vec3>> = mesh.vertices.iter().map(|&p| Some(p)).collect();
-    positions.extend((0..nf).map(|f| Some(mesh.face_centroid(f))));
+    positions.extend(
+        (0..nf)
+            .filter(|&f| !pinned(f))
+            .map(|f| Some(mesh.face_centroid(f))),
+    );
     positions.extend((0..ne).filter(|&e| free[e]).map(|e| {
         let [a, b] = conn.edges[e];
         Some((mesh.vertices[a] + mesh.vertices[b]) * 0.5)
@@ -172,8 +199,7 @@ fn fit_cell_points(
     layout: Layout,
     x: &[f64],
     nf: usize,
-    cells: &mut [f64],
-) -> Result<()> {
+) -> Result<Vec<Vec3>> {
     let mut triplets: Vec<Triplet<usize, usize, f64>> =
         (0..nf).map(|f| Triplet::new(f, f, 1e-9)).collect();
     let mut rhs = Mat::<f64>::zeros(nf, 3);
@@ -198,12 +224,39 @@ fn fit_cell_points(
         .sp_cholesky(Side::Lower)
         .map_err(|e| fail(&format!("{e:?}")))?;
     let solution = faer::linalg::solvers::Solve::solve(&llt, &rhs);
-    for f in 0..nf {
-        for k in 0..3 {
-            cells[3 * f + k] = solution[(f, k)];
+    Ok((0..nf)
+        .map(|f| Vec3::new(solution[(f, 0)], solution[(f, 1)], solution[(f, 2)]))
+        .collect())
+}
+
+/// For each cell, the first cell of its group: the cells linked to it through edges whose
+/// normal is a difference of cell points.
+fn cell_groups(
+    conn: &Connectivity,
+    sides: &[[Option<usize>; 2]],
+    free: &[bool],
+    nf: usize,
+) -> Vec<usize> {
+    let mut group = vec![usize::MAX; nf];
+    for start in 0..nf {
+        if group[start] != usize::MAX {
+            continue;
+        }
+        group[start] = start;
+        let mut stack = vec![start];
+        while let Some(c) = stack.pop() {
+            for &e in &conn.face_edges[c] {
+                if let [Some(a), Some(b)] = sides[e] {
+                    let d = if a == c { b } else { a };
+                    if !free[e] && group[d] == usize::MAX {
+                        group[d] = start;
+                        stack.push(d);
+                    }
+                }
+            }
         }
     }
-    Ok(())
+    group
 }
 
 #[cfg(test)]
@@ -256,6 +309,30 @@ mod tests {
             checked += 1;
         }
         assert!(checked > 100, "{checked} nodes checked");
+    }
+
+    /// No change of the solver's unknowns leaves every wall normal and vertex as it is (S has
+    /// full column rank): a translation of all cell points would, unless one is held.
+    #[test]
+    fn no_unknown_is_free() {
+        let (mesh, conn) = annulus();
+        let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+        let d = dual_normals(&mesh, &conn, layout, &vec![0.0; layout.len()]).unwrap();
+        let s = &d.substitution;
+        let n = s.y_len();
+        let mut sts = Mat::<f64>::zeros(n, n);
+        for i in 0..s.x_len() {
+            for &(a, u) in s.terms(i) {
+                for &(b, v) in s.terms(i) {
+                    sts[(a, b)] += u * v;
+                }
+            }
+        }
+        let llt = sts.llt(Side::Lower).expect("S^T S is positive definite");
+        let smallest = (0..n)
+            .map(|i| llt.L()[(i, i)])
+            .fold(f64::INFINITY, f64::min);
+        assert!(smallest > 1e-3, "smallest pivot {smallest}");
     }
 
     /// Normals that are differences of cell points come back exactly from the fit.
