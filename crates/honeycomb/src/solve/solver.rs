@@ -168,21 +168,24 @@ impl<'a> GuidedProjection<'a> {
         &self.families
     }
 
-    /// Effective weight of family `f` at regularization `eps`. Fairness fades with `sqrt(eps)`:
-    /// early on it steers the iteration towards regular cells (and makes it converge much
-    /// faster than eps alone); at the end it acts only along the constraint manifold.
-    fn weight(&self, f: usize, eps: f64, eps0: f64) -> f64 {
+    /// Effective weight of family `f` at fade `fade` (the regularization's schedule without its
+    /// floor, over its start). Fairness fades with `sqrt(fade)`: early on it steers the
+    /// iteration towards regular cells (and makes it converge much faster than eps alone); at
+    /// the end it is gone, so that it does not hold the conditions off their zero (a fairness
+    /// left at the floor's weight kept unit normals 3e-4 off on an irregular mesh with the
+    /// cell points' soft normalization).
+    fn weight(&self, f: usize, fade: f64) -> f64 {
         let c = &self.families[f];
         match c.role() {
             Role::Guide => c.weight() * GUIDE_FADE.powi(self.iteration as i32),
             Role::Condition => c.weight(),
-            Role::Fairness => c.weight() * (eps / eps0).sqrt(),
+            Role::Fairness => c.weight() * fade.sqrt(),
         }
     }
 
     /// Evaluates every family at the solver's unknowns `y`; returns (weighted energy, largest
     /// condition residual).
-    fn evaluate(&mut self, y: &[f64], eps: f64, eps0: f64) -> (f64, f64) {
+    fn evaluate(&mut self, y: &[f64], fade: f64) -> (f64, f64) {
         let (mut energy, mut worst) = (0.0, 0.0f64);
         let x = family_point(&mut self.substitution, y);
         let values = self.residuals.iter_mut().zip(&mut self.jacobians);
@@ -190,7 +193,7 @@ impl<'a> GuidedProjection<'a> {
             c.evaluate(x, residuals, jacobian);
         }
         for f in 0..self.families.len() {
-            let w = self.weight(f, eps, eps0);
+            let w = self.weight(f, fade);
             let sq: f64 = self.residuals[f].iter().map(|r| r * r).sum();
             energy += w * w * sq;
             if self.families[f].role() == Role::Condition {
@@ -252,14 +255,14 @@ impl<'a> GuidedProjection<'a> {
         }
         state.rhs.resize(n, 0.0);
         state.trial.resize(n, 0.0);
-        let (eps, eps0) = (state.eps, state.eps0);
+        let (eps, eps0, fade) = (state.eps, state.eps0, state.fade / state.eps0);
         self.iteration = state.history.len();
         let t = Instant::now();
         self.refresh(x);
         state.t_other += t.elapsed();
 
         let t = Instant::now();
-        let (energy, max_residual) = self.evaluate(x, eps, eps0);
+        let (energy, max_residual) = self.evaluate(x, fade);
         if max_residual < opts.tolerance {
             state.converged = true;
             state.t_assembly += t.elapsed();
@@ -268,7 +271,7 @@ impl<'a> GuidedProjection<'a> {
         let rhs = &mut state.rhs;
         self.matrix.clear(rhs);
         for f in 0..self.families.len() {
-            let w = self.weight(f, eps, eps0);
+            let w = self.weight(f, fade);
             self.matrix
                 .add_family(f, w, &self.residuals[f], &self.jacobians[f], rhs);
         }
@@ -295,7 +298,7 @@ impl<'a> GuidedProjection<'a> {
             for ((t, &xi), &d) in state.trial.iter_mut().zip(x.iter()).zip(rhs.iter()) {
                 *t = xi + scale * d;
             }
-            let trial_energy = self.evaluate(&state.trial, eps, eps0).0;
+            let trial_energy = self.evaluate(&state.trial, fade).0;
             let acceptable = trial_energy <= energy * ENERGY_GROWTH_ALLOWED;
             if !opts.step_control || halvings == 5 || acceptable {
                 break trial_energy;
@@ -306,11 +309,16 @@ impl<'a> GuidedProjection<'a> {
         let step = rhs.iter().fold(0.0f64, |m, d| m.max((scale * d).abs()));
         x.copy_from_slice(&state.trial);
         // Trust the linearization more only after a step that paid off.
-        state.eps = if halvings == 0 && trial_energy <= energy {
-            (eps * EPS_DECAY).max(opts.eps_min)
+        let paid_off = halvings == 0 && trial_energy <= energy;
+        let (eps, fade) = if paid_off {
+            ((eps * EPS_DECAY).max(opts.eps_min), state.fade * EPS_DECAY)
         } else {
-            (eps * EPS_GROWTH).min(eps0)
+            (
+                (eps * EPS_GROWTH).min(eps0),
+                (state.fade * EPS_GROWTH).min(eps0),
+            )
         };
+        (state.eps, state.fade) = (eps, fade);
         state.t_other += t.elapsed();
 
         let info = IterationInfo {
@@ -329,7 +337,7 @@ impl<'a> GuidedProjection<'a> {
     pub fn report(&mut self, x: &[f64], state: SolveState, opts: &SolverOptions) -> SolveReport {
         let t = Instant::now();
         self.refresh(x);
-        let (_, max_residual) = self.evaluate(x, state.eps, state.eps0);
+        let (_, max_residual) = self.evaluate(x, state.fade / state.eps0);
         let converged = state.converged || max_residual < opts.tolerance;
         let families = self
             .families
@@ -382,6 +390,9 @@ fn family_point<'b>(
 pub struct SolveState {
     pub eps: f64,
     eps0: f64,
+    /// What eps would be without its floor: the fairness fades with it, so that at the floor
+    /// it keeps fading and no longer pulls against the conditions.
+    fade: f64,
     converged: bool,
     history: Vec<IterationInfo>,
     factorizations: usize,
@@ -398,6 +409,7 @@ impl SolveState {
         SolveState {
             eps,
             eps0: eps,
+            fade: eps,
             converged: false,
             history: Vec::new(),
             factorizations: 0,
