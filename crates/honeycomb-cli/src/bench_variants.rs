@@ -175,7 +175,7 @@ pub fn run(json: bool) -> Result<()> {
         let opt = optimize(base, Some(surface), &case.options, &mut |_| {})?;
         let seconds = start.elapsed().as_secs_f64();
         let measures = measure(&opt.honeycomb, &Surface::from_mesh(surface)?);
-        let report = Report::new(&opt, &measures, &case.options.weights, seconds);
+        let report = Report::new(&opt, &measures, seconds);
         let text = variant_measure(&case, &opt, &report);
         if json {
             println!(

@@ -151,6 +151,12 @@ fn print_report(made: &Initialized, output: Output, written: &Path) -> Result<()
 
 /// Says what the pipeline changed to get a honeycomb.
 fn print_settling(report: &Report) {
+    if report.per_edge_fallback == Some(true) {
+        eprintln!(
+            "note: wall normals as cell points gave no honeycomb; this is the solve with one \
+             normal per edge"
+        );
+    }
     if report.second_try == Some(true) {
         eprintln!(
             "note: the default weights gave no honeycomb; this is the second try, without the \

@@ -8,7 +8,7 @@ use honeycomb::mesh::{
 };
 use honeycomb::optimize::{
     optimize, optimize_made_mesh, shading_axes, unit_light, AxesOptions, OptimizeOptions,
-    ParallelOptions, QuadOptions, QuadPattern, WallNormals, Weights, CELL_POINTS_NORMALIZATION,
+    ParallelOptions, QuadOptions, QuadPattern, WallNormals, Weights,
 };
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
@@ -48,7 +48,8 @@ pub struct SolveArgs {
     /// Weight of wall consistency (the wall contains its edge).
     #[arg(long, default_value_t = Weights::default().consistency, allow_negative_numbers = true)]
     pub w_cons: f64,
-    /// Weight of the unit-normal condition [default: 10; 0.3 with --cell-points].
+    /// Weight of the unit-normal condition [default: 0.3 with cell points, 10 with normals per
+    /// edge].
     #[arg(long, allow_negative_numbers = true)]
     pub w_norm: Option<f64>,
     /// Weight of closeness to the reference surface.
@@ -61,12 +62,16 @@ pub struct SolveArgs {
     /// 3; pipeline tries 0 next if 3 gives no honeycomb].
     #[arg(long, allow_negative_numbers = true)]
     pub w_fair: Option<f64>,
-    /// Solve for one point per cell instead of one normal per edge: each wall normal is the
-    /// difference of its two cells' points, so the 120-degree condition holds at inner nodes
-    /// by construction; a third less fill and more accuracy per iteration. Plain honeycombs
-    /// only (not with --parallel, --quads, --axes or --light).
+    /// Solve for one point per cell (the default for a plain honeycomb): each wall normal is
+    /// the difference of its two cells' points, so the 120-degree condition holds at inner
+    /// nodes by construction; a third less fill than one normal per edge and more accuracy per
+    /// iteration. Given explicitly, a variant (--parallel, --quads, --axes, --light) is an
+    /// error instead of a switch to normals per edge.
     #[arg(long)]
     pub cell_points: bool,
+    /// Solve for one unit normal per edge (the paper's formulation; what the variants use).
+    #[arg(long, conflicts_with = "cell_points")]
+    pub per_edge_normals: bool,
     /// Keep every edge at least this long (model units), by dummy unknowns [default with
     /// --light: 0.3 mean edge lengths].
     #[arg(long, allow_negative_numbers = true)]
@@ -215,11 +220,7 @@ impl SolveArgs {
         let weights = Weights {
             angle: self.w_angle,
             consistency: self.w_cons,
-            normalization: self.w_norm.unwrap_or(if self.cell_points {
-                CELL_POINTS_NORMALIZATION
-            } else {
-                Weights::default().normalization
-            }),
+            normalization: self.w_norm,
             closeness: self.w_close,
             boundary: self.w_boundary,
             fairness: self.w_fair.unwrap_or(Weights::default().fairness),
@@ -267,10 +268,10 @@ impl SolveArgs {
                 weight: self.w_parallel,
                 depth_weight: self.w_depth,
             }),
-            wall_normals: if self.cell_points {
-                WallNormals::CellPoints
-            } else {
-                WallNormals::PerEdge
+            wall_normals: match (self.cell_points, self.per_edge_normals) {
+                (true, _) => WallNormals::CellPoints,
+                (_, true) => WallNormals::PerEdge,
+                _ => WallNormals::Auto,
             },
             ..OptimizeOptions::default()
         })
@@ -399,16 +400,22 @@ pub fn optimize_and_write(
             let second_try = args.w_fair.is_none();
             let result =
                 optimize_made_mesh(base, surface, &options, second_try, &mut |attempt, info| {
-                    if info.iteration == 1 && (attempt.solve > 1 || attempt.second_try) {
+                    if info.iteration == 1
+                        && (attempt.solve > 1 || attempt.second_try || attempt.per_edge)
+                    {
                         bar.restart(attempt);
                     }
                     bar.update(info)
                 });
             bar.finish();
             let made = result?;
-            options = made.options;
             let s = made.settled;
-            let settled = Some((s.dropped_cells, s.solves, made.second_try));
+            let settled = Some((
+                s.dropped_cells,
+                s.solves,
+                made.second_try,
+                made.per_edge_fallback,
+            ));
             (s.optimized, s.measures, Cow::Owned(s.base), settled)
         }
         _ => {
@@ -420,11 +427,12 @@ pub fn optimize_and_write(
         }
     };
     let seconds = start.elapsed().as_secs_f64();
-    let mut report = Report::new(&optimized, &measures, &options.weights, seconds);
-    if let Some((dropped, solves, second_try)) = settled {
+    let mut report = Report::new(&optimized, &measures, seconds);
+    if let Some((dropped, solves, second_try, per_edge_fallback)) = settled {
         report.dropped_boundary_cells = Some(dropped);
         report.solves = Some(solves);
         report.second_try = Some(second_try);
+        report.per_edge_fallback = Some(per_edge_fallback);
     }
     if let Some(light) = args.light {
         let before = extruded_along_normals(

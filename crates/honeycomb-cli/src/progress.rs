@@ -53,10 +53,11 @@ impl IterationBar {
     /// A new solve begins: after broken boundary cells were dropped, or the second try.
     pub fn restart(&self, attempt: Attempt) {
         if let Some(bar) = &self.bar {
-            let again = if attempt.second_try {
-                ", second try"
-            } else {
-                ""
+            let again = match (attempt.per_edge, attempt.second_try) {
+                (false, false) => "",
+                (false, true) => ", second try",
+                (true, false) => ", normals per edge",
+                (true, true) => ", normals per edge, second try",
             };
             bar.set_prefix(format!("optimizing (solve {}{again})", attempt.solve));
             bar.set_position(0);

@@ -303,10 +303,11 @@ fn wavy_disk(height: fn(f64, f64) -> f64, lobes: f64, wave: f64) -> String {
     obj
 }
 
-/// On a monkey saddle with a wavy rim the default solve breaks a few boundary cells (and
-/// `optimize` on the same grid stops with omega far above the tolerance); pipeline drops them
-/// and gets a honeycomb. On a dome with a three-lobed rim the default weights give none at all:
-/// pipeline's second try, without fairness, does.
+/// On a monkey saddle with a wavy rim the solve with normals per edge breaks a few boundary
+/// cells (and `optimize` on the same grid stops with omega far above the tolerance); pipeline
+/// drops them and gets a honeycomb. On a dome with a three-lobed rim the default weights give
+/// none at all: pipeline's second try, without fairness, does. (With cell points, the default,
+/// both are honeycombs at once: checked first.)
 #[test]
 fn pipeline_drops_broken_boundary_cells_and_tries_again() {
     let tmp = TempDir::new("pipeline_broken");
@@ -327,16 +328,20 @@ fn pipeline_drops_broken_boundary_cells_and_tries_again() {
         grid.to_str().unwrap(),
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
+    let optimize = |dir: &Path, normals: &str| {
+        let mut args = vec!["optimize", grid.to_str().unwrap(), "--surface"];
+        args.extend([monkey.to_str().unwrap(), "-q", "-o", dir.to_str().unwrap()]);
+        args.extend((!normals.is_empty()).then_some(normals));
+        run(args)
+    };
+    let cells = tmp.join("cells");
+    let out = optimize(&cells, "");
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = read_json(&cells, "report.json");
+    assert_eq!(report["wall_normals"], "cell_points", "{report}");
+    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
     let plain = tmp.join("plain");
-    let out = run([
-        "optimize",
-        grid.to_str().unwrap(),
-        "--surface",
-        monkey.to_str().unwrap(),
-        "-q",
-        "-o",
-        plain.to_str().unwrap(),
-    ]);
+    let out = optimize(&plain, "--per-edge-normals");
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(number(&read_json(&plain, "report.json"), "omega_max_deg") > 1.0);
 
@@ -346,6 +351,7 @@ fn pipeline_drops_broken_boundary_cells_and_tries_again() {
         monkey.to_str().unwrap(),
         "--cells",
         "300",
+        "--per-edge-normals",
         "-o",
         dir.to_str().unwrap(),
     ]);
@@ -374,6 +380,7 @@ fn pipeline_drops_broken_boundary_cells_and_tries_again() {
         dome.to_str().unwrap(),
         "--cells",
         "300",
+        "--per-edge-normals",
         "-o",
         dir.to_str().unwrap(),
     ]);
@@ -411,4 +418,12 @@ fn pipeline_with_the_field_method() {
     let report = read_json(&dir, "report.json");
     assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
     assert_eq!(number(&report, "nonconvex_walls"), 0.0, "{report}");
+    // Cell points leave mirrored nodes on this mesh; the solve per edge that follows does not.
+    assert_eq!(report["per_edge_fallback"], true, "{report}");
+    assert_eq!(report["wall_normals"], "per_edge", "{report}");
+    assert!(
+        stderr(&out).contains("one normal per edge"),
+        "{}",
+        stderr(&out)
+    );
 }

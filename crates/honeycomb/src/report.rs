@@ -1,7 +1,7 @@
 //! `report.json`: the Figure 16 row of a run and everything needed to judge it.
 
 use crate::analysis::ShadingReport;
-use crate::optimize::{Optimized, Weights};
+use crate::optimize::{Optimized, WallNormals, Weights};
 use crate::solve::{FamilyResidual, IterationInfo};
 use crate::structure::{
     axes_measures, parallel_measures, quad_mesh_measures, AxesMeasures, FaceMeasures, Honeycomb,
@@ -44,6 +44,9 @@ pub struct Report {
     pub solves: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub second_try: Option<bool>,
+    /// `pipeline`: the kept try has normals per edge because cell points gave no honeycomb.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub per_edge_fallback: Option<bool>,
     /// Wall time of the whole optimization (symbolic analysis included).
     pub seconds: f64,
     pub seconds_symbolic: f64,
@@ -56,6 +59,8 @@ pub struct Report {
     pub factor_nnz: usize,
     pub factorizations: usize,
     pub weights: Weights,
+    /// The solver's unknowns for the wall normals: `cell_points` or `per_edge`.
+    pub wall_normals: WallNormals,
     /// Solver residuals per constraint family after the last step (normalized frame).
     pub residuals: Vec<FamilyResidual>,
     pub history: Vec<IterationInfo>,
@@ -70,7 +75,7 @@ pub struct QuadCoverReport {
 }
 
 impl Report {
-    pub fn new(opt: &Optimized, m: &Measures, weights: &Weights, seconds: f64) -> Report {
+    pub fn new(opt: &Optimized, m: &Measures, seconds: f64) -> Report {
         let s = &opt.solve;
         let honeycomb =
             m.omega_max_deg <= Self::OMEGA_TOLERANCE_DEG && m.delta_max <= Self::DELTA_TOLERANCE;
@@ -103,6 +108,7 @@ impl Report {
             dropped_boundary_cells: None,
             solves: None,
             second_try: None,
+            per_edge_fallback: None,
             seconds,
             seconds_symbolic: s.seconds_symbolic,
             seconds_assembly: s.seconds_assembly,
@@ -112,7 +118,8 @@ impl Report {
             matrix_nnz: s.matrix_nnz,
             factor_nnz: s.factor_nnz,
             factorizations: s.factorizations,
-            weights: *weights,
+            weights: opt.weights,
+            wall_normals: opt.wall_normals,
             residuals: s.families.clone(),
             history: s.history.clone(),
         }
@@ -139,7 +146,7 @@ impl Report {
             self.edges,
             self.weights.angle,
             self.weights.consistency,
-            self.weights.normalization,
+            self.weights.normalization(),
             self.iterations,
             self.measures.omega_max_deg,
             self.measures.omega_avg_deg,

@@ -90,8 +90,9 @@ fn resizing_a_cell_keeps_every_node_and_wall() {
             moved += 1;
         } else {
             assert_eq!(d, 0.0, "vertex {v} is not a corner of the cell but moved");
-            assert_eq!(
-                after.omega_per_node[v], before.omega_per_node[v],
+            // Up to roundoff: a neighbour's edge to a moved corner turns within its wall.
+            assert!(
+                (after.omega_per_node[v] - before.omega_per_node[v]).abs() < 1e-12,
                 "node {v}"
             );
         }

@@ -32,6 +32,7 @@ use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyM
 use crate::solve::{Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolverOptions};
 use crate::structure::{node_axes, Honeycomb};
 use crate::surface::Surface;
+use serde::Serialize;
 
 #[derive(Clone, Debug, Default)]
 pub struct OptimizeOptions {
@@ -53,22 +54,33 @@ pub struct OptimizeOptions {
 }
 
 /// The unknowns behind the wall normals.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum WallNormals {
-    /// One unit normal per edge (the paper's formulation, DESIGN.md section 2).
+    /// Cell points for a plain honeycomb, normals per edge with a variant (parallel meshes,
+    /// quads, prescribed axes), which constrain the normals one by one.
     #[default]
+    Auto,
+    /// One unit normal per edge (the paper's formulation, DESIGN.md section 2).
     PerEdge,
     /// One point per cell, each wall normal the difference of its two cells' points (see
-    /// `dual_normals.rs`): the 120-degree condition holds at inner nodes by construction and
-    /// the factor is about a third smaller. Plain honeycombs only (no parallel meshes, quads or
-    /// prescribed axes); use it with [`OptimizeOptions::cell_points`]'s weights.
+    /// `dual_normals.rs`): the 120-degree condition holds at inner nodes by construction, the
+    /// factor is about a third smaller and each iteration gains more. Plain honeycombs only.
     CellPoints,
 }
 
-/// The normalization weight for [`WallNormals::CellPoints`]: with the node condition exact,
-/// the paper's 10 holds the walls' lengths so hard that the iteration slows to a linear rate
-/// (omega 1.5e-2 instead of 3e-9 after 5 iterations on an 8.8k dome); 0.3 converges fastest.
-pub const CELL_POINTS_NORMALIZATION: f64 = 0.3;
+impl WallNormals {
+    /// The default normalization weight. Per edge the paper's 10. With cell points the node
+    /// condition is exact, and 10 holds the walls' lengths so hard that the iteration slows to
+    /// a linear rate (omega 1.5e-2 instead of 3e-9 after 5 iterations on an 8.8k dome); 0.3
+    /// converges fastest.
+    pub fn normalization(self) -> f64 {
+        match self {
+            WallNormals::CellPoints => 0.3,
+            WallNormals::PerEdge | WallNormals::Auto => 10.0,
+        }
+    }
+}
 
 /// A distance between M and M' (model units) must be a positive length.
 pub fn check_thickness(t: f64) -> Result<()> {
@@ -87,15 +99,38 @@ pub const SECOND_TRY_MIN_EDGE: f64 = 0.3;
 pub const SECOND_TRY_ITERATIONS: usize = 200;
 
 impl OptimizeOptions {
-    /// The default options with wall normals as differences of cell points and their
-    /// normalization weight.
+    /// The default options with wall normals as differences of cell points.
     pub fn cell_points() -> OptimizeOptions {
-        let mut options = OptimizeOptions {
+        OptimizeOptions {
             wall_normals: WallNormals::CellPoints,
             ..OptimizeOptions::default()
+        }
+    }
+
+    /// The default options with one unknown normal per edge.
+    pub fn per_edge() -> OptimizeOptions {
+        OptimizeOptions {
+            wall_normals: WallNormals::PerEdge,
+            ..OptimizeOptions::default()
+        }
+    }
+
+    fn is_variant(&self) -> bool {
+        self.parallel.is_some() || self.axes.is_some() || self.quads.is_some()
+    }
+
+    /// These options with `Auto` wall normals decided and the normalization weight set.
+    pub fn resolved(&self) -> OptimizeOptions {
+        let wall_normals = match self.wall_normals {
+            WallNormals::Auto if self.is_variant() => WallNormals::PerEdge,
+            WallNormals::Auto => WallNormals::CellPoints,
+            chosen => chosen,
         };
-        options.weights.normalization = CELL_POINTS_NORMALIZATION;
-        options
+        OptimizeOptions {
+            wall_normals,
+            weights: self.weights.resolved(wall_normals),
+            ..self.clone()
+        }
     }
 
     /// The second try for a base mesh on a real surface that these options left short of a
@@ -133,8 +168,7 @@ impl OptimizeOptions {
         if let Some(q) = &self.quads {
             q.validate()?;
         }
-        let variant = self.parallel.is_some() || self.axes.is_some() || self.quads.is_some();
-        if self.wall_normals == WallNormals::CellPoints && variant {
+        if self.wall_normals == WallNormals::CellPoints && self.is_variant() {
             return Err(Error::Parameter(
                 "wall normals as cell points: only for the plain honeycomb (no parallel \
                  meshes, quads or prescribed axes)"
@@ -161,6 +195,10 @@ pub struct Optimized {
     pub quads: Option<PolyMesh>,
     /// With quads: how the cells were split (the quads to measure, the polylines).
     pub quad_cover: Option<crate::structure::QuadCover>,
+    /// The weights the solve used (normalization set; boundary 0 without a design surface).
+    pub weights: Weights,
+    /// The wall normals' unknowns the solve used (`Auto` decided).
+    pub wall_normals: WallNormals,
 }
 
 /// The unknowns and constraint families of one optimization, in the normalized frame.
@@ -278,7 +316,7 @@ impl<'a> Problem<'a> {
             }));
         }
         let quad_cover = options.quads.as_ref().map(|q| {
-            let w_norm = weights.normalization;
+            let w_norm = weights.normalization();
             quads::add_quads(
                 mesh,
                 conn,
@@ -309,6 +347,7 @@ pub fn optimize(
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Optimized> {
     options.validate(base.vertices.len())?;
+    let options = &options.resolved();
     let conn = validate_base_mesh(base)?;
     let mut weights = options.weights;
     if let Some(s) = surface {
@@ -376,5 +415,7 @@ pub fn optimize(
         parallel: options.parallel.is_some(),
         quads,
         quad_cover,
+        weights,
+        wall_normals: options.wall_normals,
     })
 }

@@ -115,7 +115,7 @@ pub fn families<'a>(
     let mut families: Vec<Box<dyn Constraint + 'a>> = vec![
         Box::new(Normalization {
             layout,
-            weight: weights.normalization,
+            weight: weights.normalization(),
         }),
         Box::new(WallConsistency {
             layout,

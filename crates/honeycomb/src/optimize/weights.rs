@@ -1,5 +1,6 @@
 //! Weights of the constraint families (defaults: the paper's Figure 16).
 
+use super::WallNormals;
 use crate::error::{Error, Result};
 use serde::Serialize;
 
@@ -7,7 +8,9 @@ use serde::Serialize;
 pub struct Weights {
     pub angle: f64,
     pub consistency: f64,
-    pub normalization: f64,
+    /// `None`: the wall normals' own (see [`WallNormals::normalization`]); `optimize` reports
+    /// the weight it used.
+    pub normalization: Option<f64>,
     pub closeness: f64,
     pub boundary: f64,
     /// Opposite-wall fairness at the initial regularization; it fades with `sqrt(eps)`, so it
@@ -24,7 +27,7 @@ impl Default for Weights {
         Weights {
             angle: 1.0,
             consistency: 1.0,
-            normalization: 10.0,
+            normalization: None,
             closeness: 1.0,
             boundary: 1.0,
             fairness: 3.0,
@@ -34,6 +37,19 @@ impl Default for Weights {
 }
 
 impl Weights {
+    /// The normalization weight; unset: the one of normals per edge (which the families of
+    /// [`super::families`] are).
+    pub fn normalization(&self) -> f64 {
+        self.normalization
+            .unwrap_or(WallNormals::PerEdge.normalization())
+    }
+
+    /// These weights with the normalization weight set for `normals` unless it is set.
+    pub fn resolved(mut self, normals: WallNormals) -> Weights {
+        self.normalization.get_or_insert(normals.normalization());
+        self
+    }
+
     /// The weights with the labels to name them by, in the order angle, consistency,
     /// normalization, closeness, boundary, fairness, guide. The first three are the honeycomb
     /// conditions and must be positive; the others may be 0 (off).
@@ -41,7 +57,7 @@ impl Weights {
         let w = [
             self.angle,
             self.consistency,
-            self.normalization,
+            self.normalization(),
             self.closeness,
             self.boundary,
             self.fairness,
