@@ -467,14 +467,15 @@ fn pipeline_on_the_shared_surfaces() {
             let m = &settled.measures;
             println!(
                 "{file} {cells}: {} V, omega {:.2e}, delta {:.2e}, dropped {} of {} cells in {} \
-                 solves, second try {}",
+                 solves, second try {}, normals per edge {}",
                 settled.optimized.honeycomb.base.vertices.len(),
                 m.omega_max_deg,
                 m.delta_max,
                 settled.dropped_cells,
                 made.base.faces.len(),
                 settled.solves,
-                result.second_try
+                result.second_try,
+                result.per_edge_fallback
             );
             assert!(
                 settled.dropped_cells as f64 <= 0.03 * made.base.faces.len() as f64,
