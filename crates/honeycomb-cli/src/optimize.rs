@@ -478,13 +478,23 @@ pub fn optimize_and_write(
         return Err(Error::Solver(format!(
             "the result is not a honeycomb after {} iterations: omega_max {:.3} deg, \
              delta_max {:.1e} (tolerance {} deg, {:.0e}); the outputs in {} are for inspection. \
-             More --iterations or a larger --eps may help{}{}",
+             More --iterations or a larger --eps may help{}{}{}",
             report.iterations,
             report.measures.omega_max_deg,
             report.measures.delta_max,
             Report::OMEGA_TOLERANCE_DEG,
             Report::DELTA_TOLERANCE,
             dir.display(),
+            // Chosen, not asked for, and not already followed by a solve per edge (pipeline):
+            // the other formulation takes another path.
+            if report.wall_normals == WallNormals::CellPoints
+                && report.per_edge_fallback.is_none()
+                && !args.cell_points
+            {
+                ", and so may --per-edge-normals"
+            } else {
+                ""
+            },
             if nonconvex.is_empty() {
                 String::new()
             } else {

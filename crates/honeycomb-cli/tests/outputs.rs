@@ -554,25 +554,43 @@ fn the_recomputing_helpers_measure_what_they_claim() {
 }
 
 /// `--cell-points`: the same outputs, a honeycomb, and the weight it used in report.json.
+/// Cell points by default, each formulation with its own normalization weight (an explicit
+/// one wins); a solve that falls short names the other formulation, unless cell points were
+/// asked for.
 #[test]
-fn demo_with_cell_points_writes_a_honeycomb() {
+fn demo_solves_for_cell_points_by_default() {
     let dir = TempDir::new("demo_with_cell_points");
-    let out = dir.join("out");
-    let output = small_demo(
-        &out,
-        &["--cell-points", "--shape", "dome", "--iterations", "6"],
-    );
-    assert_success(&output, "demo --cell-points");
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        (small_demo(&out, extra), out)
+    };
+    let (output, out) = run("default", &["--shape", "dome", "--iterations", "6"]);
+    assert_success(&output, "demo");
     let r = report(&out);
-    assert_sane(&r, "demo --cell-points");
+    assert_sane(&r, "demo");
     assert!(number(&r, "omega_max_deg") < 1e-6, "{r}");
+    assert_eq!(r["wall_normals"], "cell_points", "{r}");
     assert_eq!(r["weights"]["normalization"].as_f64(), Some(0.3), "{r}");
-    // An explicit weight wins.
-    let out2 = dir.join("out2");
-    let output = small_demo(&out2, &["--cell-points", "--w-norm", "1"]);
+    let (output, out) = run("edges", &["--per-edge-normals"]);
+    assert_success(&output, "demo --per-edge-normals");
+    let r = report(&out);
+    assert_eq!(r["wall_normals"], "per_edge", "{r}");
+    assert_eq!(r["weights"]["normalization"].as_f64(), Some(10.0), "{r}");
+    let (output, out) = run("weight", &["--cell-points", "--w-norm", "1"]);
     assert_success(&output, "demo --cell-points --w-norm 1");
-    assert_eq!(
-        report(&out2)["weights"]["normalization"].as_f64(),
-        Some(1.0)
+    assert_eq!(report(&out)["weights"]["normalization"].as_f64(), Some(1.0));
+    let (output, _) = run("short", &["--iterations", "1"]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        stderr(&output).contains("--per-edge-normals"),
+        "{}",
+        stderr(&output)
+    );
+    let (output, _) = run("short_asked", &["--iterations", "1", "--cell-points"]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        !stderr(&output).contains("--per-edge-normals"),
+        "{}",
+        stderr(&output)
     );
 }
