@@ -13,8 +13,9 @@ pub struct Weights {
     pub normalization: Option<f64>,
     pub closeness: f64,
     pub boundary: f64,
-    /// Opposite-wall fairness at the initial regularization; it fades with `sqrt(eps)`, so it
-    /// shapes the result without biasing the honeycomb conditions.
+    /// Opposite-wall fairness at the initial regularization; it fades with the square root of
+    /// the regularization's schedule (which, unlike eps, has no floor), so it shapes the result
+    /// without biasing the honeycomb conditions.
     pub fairness: f64,
     /// Guide of the node axes towards the surface normals (walls across the surface) for the
     /// first iterations; it fades by 0.3 per iteration. Off (0) by default: with it, the
