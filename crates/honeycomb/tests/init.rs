@@ -466,11 +466,12 @@ fn pipeline_on_the_shared_surfaces() {
             let settled = &result.settled;
             let m = &settled.measures;
             println!(
-                "{file} {cells}: {} V, omega {:.2e}, delta {:.2e}, dropped {} of {} cells in {} \
+                "{file} {cells}: {} V, omega {:.2e}, delta {:.2e}, closeness {:.1e}, dropped {} of {} cells in {} \
                  solves, second try {}, normals per edge {}",
                 settled.optimized.honeycomb.base.vertices.len(),
                 m.omega_max_deg,
                 m.delta_max,
+                m.closeness_max,
                 settled.dropped_cells,
                 made.base.faces.len(),
                 settled.solves,
@@ -487,6 +488,12 @@ fn pipeline_on_the_shared_surfaces() {
                 m.omega_max_deg
             );
             assert!(m.delta_max < 1e-3, "{file} {cells}: delta {}", m.delta_max);
+            // Every vertex on S, the boundary ones too (none beyond S's edge).
+            assert!(
+                m.closeness_max < 1e-3,
+                "{file} {cells}: closeness {}",
+                m.closeness_max
+            );
         }
     }
 }

@@ -33,7 +33,8 @@ const PROBE_ITERATIONS: usize = 20;
 pub const MAX_DROPPED_SHARE: f64 = 0.03;
 
 /// The cells with a boundary edge that hold a collapsed cap, a broken node or a broken wall
-/// (far from planar, or not convex) (sorted). Interior cells are never listed: dropping them would open holes.
+/// (far from planar, or not convex), or that border an inner cell holding one (sorted). Inner
+/// cells are never listed: dropping them would open holes.
 pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -> Vec<usize> {
     let limit = COLLAPSED_CAP * m.mean_edge_length;
     let length = |e: usize| {
@@ -49,12 +50,28 @@ pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -
             || m.omega_per_node[a] > BROKEN_NODE_DEG
             || m.omega_per_node[b] > BROKEN_NODE_DEG
     };
-    (0..h.base.faces.len())
-        .filter(|&f| {
-            let edges = &conn.face_edges[f];
-            edges.iter().any(|&e| conn.is_boundary_edge(e)) && edges.iter().any(|&e| broken_edge(e))
-        })
-        .collect()
+    let on_boundary = |f: usize| conn.face_edges[f].iter().any(|&e| conn.is_boundary_edge(e));
+    let holds_broken = |f: usize| conn.face_edges[f].iter().any(|&e| broken_edge(e));
+    let mut broken = vec![false; h.base.faces.len()];
+    for f in 0..h.base.faces.len() {
+        if !holds_broken(f) {
+            continue;
+        }
+        if on_boundary(f) {
+            broken[f] = true;
+        } else {
+            // An inner cell next to the boundary is broken by its boundary neighbours'
+            // twist (walls crossed where the axes lean together): they go instead.
+            for &e in &conn.face_edges[f] {
+                for g in conn.edge_faces[e].iter().flatten().copied() {
+                    if on_boundary(g) {
+                        broken[g] = true;
+                    }
+                }
+            }
+        }
+    }
+    (0..h.base.faces.len()).filter(|&f| broken[f]).collect()
 }
 
 /// `mesh` without the faces `drop` (sorted) and the vertices no other face uses; the order of

@@ -29,6 +29,9 @@ pub struct ClosestPoint {
     pub distance: f64,
     /// Index of the triangle containing `point` (see [`Surface::triangles`]).
     pub triangle: usize,
+    /// `point` lies on S's boundary (an edge or corner of a triangle that borders nothing):
+    /// the query point may then be beyond S's edge rather than above it.
+    pub on_boundary: bool,
 }
 
 /// A triangulated, consistently oriented reference surface with its acceleration structures.
@@ -43,6 +46,10 @@ pub struct Surface {
     face_normals: Vec<Vec3>,
     /// Unit angle-weighted normal per vertex (zero for vertices without proper faces).
     vertex_normals: Vec<Vec3>,
+    /// Per triangle, whether its edge k (from corner k to corner k + 1) is on the boundary.
+    boundary_sides: Vec<[bool; 3]>,
+    /// Per vertex, whether it is on the boundary.
+    boundary_vertex: Vec<bool>,
     bvh: Bvh,
     boundary: Boundary,
 }
@@ -69,12 +76,32 @@ impl Surface {
         let vertex_normals = normals::vertex_normals(&vertices, &triangles, &face_normals);
         normals::fill_degenerate(&mut face_normals, &triangles, &vertex_normals);
         let boundary = Boundary::new(&vertices, &boundary_edges);
+        let on_boundary: std::collections::HashSet<(usize, usize)> = boundary_edges
+            .iter()
+            .map(|&[a, b]| (a.min(b), a.max(b)))
+            .collect();
+        let boundary_sides = triangles
+            .iter()
+            .map(|t| {
+                std::array::from_fn(|k| {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    on_boundary.contains(&(a.min(b), a.max(b)))
+                })
+            })
+            .collect();
+        let mut boundary_vertex = vec![false; vertices.len()];
+        for &[a, b] in &boundary_edges {
+            boundary_vertex[a] = true;
+            boundary_vertex[b] = true;
+        }
         Ok(Surface {
             vertices,
             triangles,
             corners,
             face_normals,
             vertex_normals,
+            boundary_sides,
+            boundary_vertex,
             bvh,
             boundary,
         })
@@ -95,6 +122,20 @@ impl Surface {
             normal: self.interpolated_normal(triangle, weights),
             distance: d2.sqrt(),
             triangle,
+            on_boundary: self.on_boundary(triangle, weights),
+        }
+    }
+
+    /// Whether the point of `triangle` with barycentric `weights` is on S's boundary: on an
+    /// edge (the opposite corner's weight is zero) or at a corner that borders nothing.
+    fn on_boundary(&self, triangle: usize, weights: [f64; 3]) -> bool {
+        let zeros = weights.iter().filter(|&&w| w == 0.0).count();
+        let first = |zero: bool| (0..3).find(|&k| (weights[k] == 0.0) == zero).unwrap_or(0);
+        match zeros {
+            // The side opposite corner k runs from corner k + 1 to k + 2.
+            1 => self.boundary_sides[triangle][(first(true) + 1) % 3],
+            2 => self.boundary_vertex[self.triangles[triangle][first(false)]],
+            _ => false,
         }
     }
 
