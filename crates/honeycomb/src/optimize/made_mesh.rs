@@ -16,14 +16,13 @@ pub struct Attempt {
     pub solve: usize,
 }
 
-/// What [`optimize_made_mesh`] gives: the kept try, whether it is the second, and the options
-/// it ran with.
+/// What [`optimize_made_mesh`] gives: the kept try and which it is (the weights and wall
+/// normals it ran with are in `settled.optimized`).
 pub struct MadeMeshResult {
     pub settled: Settled,
     pub second_try: bool,
     /// Normals per edge, after cell points (chosen by `Auto`) gave no honeycomb.
     pub per_edge_fallback: bool,
-    pub options: OptimizeOptions,
 }
 
 impl MadeMeshResult {
@@ -97,7 +96,6 @@ fn tries(
             settled,
             second_try,
             per_edge_fallback: per_edge,
-            options: options.clone(),
         })
     };
     let first = attempt(false, options)?;
