@@ -2,6 +2,9 @@
 //! (dome, saddle), an annulus, a surface with three holes and a hemisphere, at about 1.5k and
 //! 8k hex vertices; the real surfaces of ../shared/data when present.
 
+mod common;
+
+use common::shared_data;
 use honeycomb::geometry::Vec3;
 use honeycomb::init::field::field_hex_mesh;
 use honeycomb::mesh::{validate_base_mesh, PolyMesh};
@@ -9,7 +12,6 @@ use honeycomb::surface::Surface;
 use honeycomb::Error;
 use std::collections::BTreeMap;
 use std::f64::consts::{PI, TAU};
-use std::path::PathBuf;
 use std::time::Instant;
 
 /// A disk of radius `r` triangulated by `rings` rings of 6k vertices each (6 rings^2
@@ -485,11 +487,6 @@ fn two_thousand_cells_on_a_40k_triangle_roof() {
     let what = format!("roof ({} triangles), 2000 cells", s.faces.len());
     let (_, f) = mesh_and_measure(&s, 4000, 1, &what);
     assert_targets(&f, &what);
-}
-
-fn shared_data() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
-    dir.is_dir().then_some(dir)
 }
 
 /// The real design surfaces of ../shared/data at about 1.5k and 8k hex vertices. Every result

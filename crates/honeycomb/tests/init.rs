@@ -1,5 +1,8 @@
 //! `init`: hex base meshes on design surfaces, judged on the meshes it makes.
 
+mod common;
+
+use common::shared_data;
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::geometry::Vec3;
 use honeycomb::init::{init, Align, BoundaryMode, CellSize, Flattener, InitOptions, Method};
@@ -7,7 +10,6 @@ use honeycomb::mesh::{validate_base_mesh, PolyMesh};
 use honeycomb::optimize::{optimize, optimize_made_mesh, OptimizeOptions};
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
-use std::path::PathBuf;
 
 fn options(cells: usize) -> InitOptions {
     InitOptions::new(CellSize::Cells(cells))
@@ -396,11 +398,6 @@ const FLATTENABLE: [&str; 7] = [
     "YasIsland.off",
     "free_negshell_marc_anet.obj",
 ];
-
-fn shared_data() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
-    dir.is_dir().then_some(dir)
-}
 
 /// The real design surfaces (triangle and quad meshes) of ../shared/data, at about 1.5k and 8k
 /// vertices. camelhead (a strongly curved head) is beyond a flattening: its mesh is valid but
