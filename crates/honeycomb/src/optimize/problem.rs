@@ -79,13 +79,7 @@ fn opposite_wall_pairs(mesh: &PolyMesh, conn: &Connectivity) -> Vec<[(usize, f64
 /// right after the honeycomb's unknowns.
 pub fn min_edge_family(mesh: &PolyMesh, conn: &Connectivity, length: f64) -> MinEdgeLength {
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
-    MinEdgeLength {
-        layout,
-        edges: conn.edges.clone(),
-        length,
-        dummy_start: layout.len(),
-        weight: 1.0,
-    }
+    MinEdgeLength::new(layout, conn.edges.clone(), length, layout.len(), 1.0)
 }
 
 /// The walls (edge, sign seen from the node) at every node of valence 3 and of valence 2.
