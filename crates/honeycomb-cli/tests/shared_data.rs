@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{number, parse_json, run, shared_data, stderr, TempDir, REPORT_KEYS};
+use common::{number, parse_json, read_json, run, shared_data, stderr, TempDir, REPORT_KEYS};
 use std::process::Output;
 
 struct Run {
@@ -175,4 +175,32 @@ fn dome_with_mixed_cells_runs() {
         .keys()
         .collect();
     assert_eq!(valences, ["2", "3"], "{name}");
+}
+
+/// `pipeline --method field` on inspired_mesh at 750 cells: seed 0's mesh gives no honeycomb
+/// (delta_max 0.18), seed 1's does, so the pipeline moves on to seed 1, says so and names it
+/// in init.json.
+#[test]
+fn field_pipeline_tries_the_next_seed() {
+    let Some(data) = shared_data() else {
+        println!("skipping: ../shared/data not found");
+        return;
+    };
+    let dir = TempDir::new("shared-field-seed");
+    let out = dir.join("out");
+    let input = data.join("inspired_mesh.obj");
+    let args = ["pipeline", input.to_str().unwrap(), "--cells", "750"];
+    let output = run(args
+        .into_iter()
+        .chain(["--method", "field", "-o", out.to_str().unwrap()]));
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("note: --seed 0:") && stderr(&output).contains("next seed"),
+        "{}",
+        stderr(&output)
+    );
+    assert_eq!(read_json(&out, "init.json")["seed"], 1);
+    let report = read_json(&out, "report.json");
+    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
+    assert_eq!(number(&report, "nonconvex_walls"), 0.0, "{report}");
 }

@@ -130,6 +130,8 @@ pub const MAX_CELLS: usize = 2_000_000;
 #[derive(Clone, Debug, Serialize)]
 pub struct InitReport {
     pub method: Method,
+    /// The seed the mesh was made with (`pipeline` may have moved on from the one asked for).
+    pub seed: u64,
     /// Method `flatten`: the flattening, as top-level keys.
     #[serde(flatten)]
     pub flat: Option<FlatteningReport>,
@@ -675,6 +677,7 @@ fn report(
     }
     Ok(InitReport {
         method: options.method,
+        seed: options.seed,
         flat,
         boundary: options.boundary,
         vertices: base.vertices.len(),
