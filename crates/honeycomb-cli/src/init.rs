@@ -40,7 +40,8 @@ pub struct InitArgs {
     #[arg(long)]
     pub flatten: Option<Flattener>,
     /// Shifts the grid by a pseudo-random offset (flatten) or seeds the fields (field); the same
-    /// seed gives the same mesh.
+    /// seed gives the same mesh [pipeline with field: the next seed too, where this one's mesh
+    /// gives no honeycomb].
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
 }
