@@ -211,17 +211,19 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
         )));
     }
     let candidates = candidates(&options, args.init.flatten);
-    for (k, (name, options)) in candidates.iter().enumerate() {
+    for (k, candidate) in candidates.iter().enumerate() {
         let last = k + 1 == candidates.len();
         let note = |what: String| {
             if output == Output::Human {
+                // The field's own advice is what happens next.
+                let what = what.trim_end_matches("; try another seed");
                 eprintln!(
-                    "note: {name}: {what}; trying the next {}",
-                    next_what(options)
+                    "note: {}: {what}; trying the next {}",
+                    candidate.name, candidate.varies
                 );
             }
         };
-        let made = match make(&surface, options, output) {
+        let made = match make(&surface, &candidate.options, output) {
             Ok(made) => made,
             Err(e) if !last => {
                 note(e.to_string());
@@ -265,46 +267,78 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     unreachable!("the last candidate returns")
 }
 
-/// The init options the pipeline tries in turn, each with its name for a note. Flatten
-/// without --flatten: the plan-view grid first (a honeycomb from the start wherever S does not
-/// fold over seen from above), then the ARAP one. Field: the seed, then the next one, whose
-/// singular points and dislocations fall elsewhere (at 750 cells seed 0 left crossed walls on
-/// inspired_mesh and the botanic garden that seed 1 did not, and the other way round on the
-/// negative shell).
-fn candidates(options: &InitOptions, flatten: Option<Flattener>) -> Vec<(String, InitOptions)> {
-    let with_flattener = |flattener: Flattener| {
-        let name = format!("--flatten {}", format!("{flattener:?}").to_lowercase());
-        let o = InitOptions {
+/// Seeds the pipeline tries with the field method.
+const FIELD_SEEDS: u64 = 2;
+
+/// One way the pipeline makes its hex mesh.
+struct Candidate {
+    /// For notes, as the option that picks it: `--seed 1`, `--flatten arap`.
+    name: String,
+    /// What the candidates differ in: `seed` or `flattening`.
+    varies: &'static str,
+    options: InitOptions,
+}
+
+/// The init options the pipeline tries in turn. Flatten without --flatten: the plan-view grid
+/// first (a honeycomb from the start wherever S does not fold over seen from above), then the
+/// ARAP one. Field: the seed, then the next one, whose singular points and dislocations fall
+/// elsewhere (at 750 cells seed 0 left crossed walls on inspired_mesh and the botanic garden
+/// that seed 1 did not, and the other way round on the negative shell).
+fn candidates(options: &InitOptions, flatten: Option<Flattener>) -> Vec<Candidate> {
+    let flattening = |flattener: Flattener| Candidate {
+        name: format!("--flatten {}", format!("{flattener:?}").to_lowercase()),
+        varies: "flattening",
+        options: InitOptions {
             flattener,
             ..options.clone()
-        };
-        (name, o)
+        },
     };
     match (options.method, flatten) {
         (Method::Field, _) => (0..FIELD_SEEDS)
             .map(|k| {
                 let seed = options.seed.wrapping_add(k);
-                let o = InitOptions {
-                    seed,
-                    ..options.clone()
-                };
-                (format!("--seed {seed}"), o)
+                Candidate {
+                    name: format!("--seed {seed}"),
+                    varies: "seed",
+                    options: InitOptions {
+                        seed,
+                        ..options.clone()
+                    },
+                }
             })
             .collect(),
-        (_, Some(f)) => vec![with_flattener(f)],
-        (_, None) => vec![
-            with_flattener(Flattener::Project),
-            with_flattener(Flattener::Arap),
-        ],
+        (_, Some(f)) => vec![flattening(f)],
+        (_, None) => vec![flattening(Flattener::Project), flattening(Flattener::Arap)],
     }
 }
 
-/// Seeds the pipeline tries with the field method.
-const FIELD_SEEDS: u64 = 2;
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-fn next_what(options: &InitOptions) -> &'static str {
-    match options.method {
-        Method::Field => "seed",
-        Method::Flatten => "flattening",
+    fn names(c: &[Candidate]) -> Vec<&str> {
+        c.iter().map(|c| c.name.as_str()).collect()
+    }
+
+    /// Field: the seed, then the next (wrapping); flatten: plan view, then ARAP, unless
+    /// --flatten names one.
+    #[test]
+    fn the_pipeline_tries_seeds_or_flattenings_in_turn() {
+        let field = InitOptions {
+            method: Method::Field,
+            seed: u64::MAX,
+            ..InitOptions::new(CellSize::Cells(750))
+        };
+        let tried = candidates(&field, None);
+        assert_eq!(names(&tried), ["--seed 18446744073709551615", "--seed 0"]);
+        assert_eq!(tried[1].options.seed, 0);
+        assert!(tried.iter().all(|c| c.varies == "seed"));
+        let flat = InitOptions::new(CellSize::Cells(750));
+        let tried = candidates(&flat, None);
+        assert_eq!(names(&tried), ["--flatten project", "--flatten arap"]);
+        assert_eq!(tried[0].options.flattener, Flattener::Project);
+        let chosen = candidates(&flat, Some(Flattener::Lscm));
+        assert_eq!(names(&chosen), ["--flatten lscm"]);
+        assert_eq!(chosen[0].options.flattener, Flattener::Lscm);
     }
 }

@@ -8,8 +8,12 @@
 //! edge at 0.8 L kept its dummy swinging between +-2.5 L for 200 iterations, and the row's
 //! residual, up to 0.6, stirred every other family.) So at each iteration's start such a
 //! dummy is held at zero: its derivative vanishes and the row pushes the edge's ends apart
-//! alone. Once the edge is at L or longer the dummy is reseated at `sqrt(|e|^2 - L^2)`, which
-//! meets the row and lets the edge grow on (a zero dummy would pin it at exactly L).
+//! alone. Once the edge is at L or longer the dummy is let go, as a free dummy starts (see
+//! `free_dummy`): it meets the row, or nearly, and lets the edge move on (a zero dummy would
+//! pin it at exactly L).
+//!
+//! The seats belong to the unknowns of one solve: a solver whose unknowns are replaced from
+//! outside between iterations (an undo) must build this family anew.
 
 use super::layout::{put, triple, Layout};
 use crate::geometry::Vec3;
@@ -54,21 +58,23 @@ impl MinEdgeLength {
         x[self.dummy_start + e] + self.seat[e]
     }
 
-    /// Dummies that satisfy the rows where an edge is already long enough, and never below
-    /// L/10: the dummy enters squared, so near 0 its derivative vanishes and an edge just
-    /// longer than L would be held there instead of being free to move. (Edges shorter than L
-    /// have their dummies held at zero by the first refresh.)
+    /// Free dummies for the edges of `vertices` (see `free_dummy`; edges shorter than L have
+    /// theirs held at zero by the first refresh).
     pub fn initial_dummies(&self, vertices: &[Vec3]) -> Vec<f64> {
         self.edges
             .iter()
-            .map(|&[a, b]| {
-                let l2 = (vertices[a] - vertices[b]).norm_squared();
-                (l2 - self.length * self.length)
-                    .max(0.0)
-                    .sqrt()
-                    .max(0.1 * self.length)
-            })
+            .map(|&[a, b]| self.free_dummy((vertices[a] - vertices[b]).norm_squared()))
             .collect()
+    }
+
+    /// The dummy of a free edge of squared length `l2`: the one that meets the row, but never
+    /// below L/10. The dummy enters squared, so near 0 its derivative vanishes and an edge just
+    /// longer than L would be held there instead of being free to move.
+    fn free_dummy(&self, l2: f64) -> f64 {
+        (l2 - self.length * self.length)
+            .max(0.0)
+            .sqrt()
+            .max(0.1 * self.length)
     }
 }
 
@@ -104,14 +110,13 @@ impl Constraint for MinEdgeLength {
     }
     fn refresh(&mut self, x: &[f64]) {
         for (e, &[a, b]) in self.edges.iter().enumerate() {
-            let slack = (self.layout.vertex_at(x, a) - self.layout.vertex_at(x, b)).norm_squared()
-                - self.length * self.length;
-            let seated = if slack < 0.0 {
+            let l2 = (self.layout.vertex_at(x, a) - self.layout.vertex_at(x, b)).norm_squared();
+            let seated = if l2 < self.length * self.length {
                 self.held[e] = true;
                 0.0
             } else if self.held[e] {
                 self.held[e] = false;
-                slack.sqrt()
+                self.free_dummy(l2)
             } else {
                 continue;
             };
@@ -187,7 +192,7 @@ mod tests {
     }
 
     /// An edge shorter than L holds its dummy at zero (the row acts on the ends alone); once
-    /// it is longer than L the dummy is reseated so that the row is met and the edge is free.
+    /// it is longer than L the dummy is let go as a free one: the row met, the edge free.
     #[test]
     fn a_short_edge_holds_its_dummy_and_a_long_one_gets_it_back() {
         let layout = Layout::new(2, 1);
@@ -216,5 +221,13 @@ mod tests {
             "dummy derivative {}",
             jac[6]
         );
+        // Held again, then let go at exactly L: the dummy comes back at L/10, not at zero,
+        // where it would pin the edge at L for good.
+        family.refresh(&short);
+        let at_length = at(1.0, 0.7);
+        family.refresh(&at_length);
+        family.evaluate(&at_length, &mut res, &mut jac);
+        assert!((res[0] + 0.01).abs() < 1e-15, "residual {}", res[0]);
+        assert!((jac[6] + 0.2).abs() < 1e-15, "dummy derivative {}", jac[6]);
     }
 }
