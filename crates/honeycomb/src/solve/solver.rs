@@ -87,7 +87,7 @@ const EPS_GROWTH: f64 = 10.0;
 /// energy by less than this factor. In a slow phase the second-order terms of the quadratic
 /// conditions lift the energy by a few percent every other step; growing eps tenfold for each
 /// such step made eps swing between 1e-6 and 1e-4 for 150 iterations on Yas Island at 4000
-/// cells (omega 8e-3 degrees after 200; 2e-10 with this allowance). Two rises in a row do not
+/// cells (omega 8e-3 degrees after 200; 1e-10 with this allowance). Two rises in a row do not
 /// pay off, so that a steady climb cannot drive eps down.
 const PAID_OFF_GROWTH: f64 = 1.1;
 
