@@ -262,7 +262,7 @@ impl<'a> GuidedProjection<'a> {
         }
         state.rhs.resize(n, 0.0);
         state.trial.resize(n, 0.0);
-        let (eps, eps0, fade) = (state.eps, state.eps0, state.fade / state.eps0);
+        let (eps, fade) = (state.eps, state.relative_fade());
         self.iteration = state.history.len();
         let t = Instant::now();
         self.refresh(x);
@@ -315,19 +315,9 @@ impl<'a> GuidedProjection<'a> {
         };
         let step = rhs.iter().fold(0.0f64, |m, d| m.max((scale * d).abs()));
         x.copy_from_slice(&state.trial);
-        // Trust the linearization more only after a step that paid off.
-        let rose = trial_energy > energy;
         let paid = paid_off(halvings, energy, trial_energy, state.last_rose);
-        state.last_rose = rose;
-        let (eps, fade) = if paid {
-            ((eps * EPS_DECAY).max(opts.eps_min), state.fade * EPS_DECAY)
-        } else {
-            (
-                (eps * EPS_GROWTH).min(eps0),
-                (state.fade * EPS_GROWTH).min(eps0),
-            )
-        };
-        (state.eps, state.fade) = (eps, fade);
+        state.last_rose = trial_energy > energy;
+        state.adapt(paid, opts.eps_min);
         state.t_other += t.elapsed();
 
         let info = IterationInfo {
@@ -346,7 +336,7 @@ impl<'a> GuidedProjection<'a> {
     pub fn report(&mut self, x: &[f64], state: SolveState, opts: &SolverOptions) -> SolveReport {
         let t = Instant::now();
         self.refresh(x);
-        let (_, max_residual) = self.evaluate(x, state.fade / state.eps0);
+        let (_, max_residual) = self.evaluate(x, state.relative_fade());
         let converged = state.converged || max_residual < opts.tolerance;
         let families = self
             .families
@@ -437,6 +427,24 @@ impl SolveState {
             t_other: Duration::ZERO,
             rhs: Vec::new(),
             trial: Vec::new(),
+        }
+    }
+
+    /// The fairness's fade: the regularization's schedule without its floor, over its start.
+    fn relative_fade(&self) -> f64 {
+        self.fade / self.eps0
+    }
+
+    /// Trusts the linearization more after a step that paid off, less after one that did
+    /// not: eps and the fade shrink or grow together, eps within its floor and its start, the
+    /// fade within its start only.
+    fn adapt(&mut self, paid_off: bool, eps_min: f64) {
+        if paid_off {
+            self.eps = (self.eps * EPS_DECAY).max(eps_min);
+            self.fade *= EPS_DECAY;
+        } else {
+            self.eps = (self.eps * EPS_GROWTH).min(self.eps0);
+            self.fade = (self.fade * EPS_GROWTH).min(self.eps0);
         }
     }
 
