@@ -463,8 +463,8 @@ fn pipeline_on_the_shared_surfaces() {
             let settled = &result.settled;
             let m = &settled.measures;
             println!(
-                "{file} {cells}: {} V, omega {:.2e}, delta {:.2e}, closeness {:.1e}, dropped {} of {} cells in {} \
-                 solves, second try {}, normals per edge {}",
+                "{file} {cells}: {} V, omega {:.2e}, delta {:.2e}, closeness {:.1e}, dropped {} \
+                 of {} cells in {} solves, second try {}, normals per edge {}",
                 settled.optimized.honeycomb.base.vertices.len(),
                 m.omega_max_deg,
                 m.delta_max,

@@ -233,9 +233,9 @@ fn a_minimum_edge_length_holds_after_optimization() {
     assert!(optimize(&base, Some(&surface), &bad, &mut |_| {}).is_err());
 }
 
-/// Wall normals as differences of cell points (the default): the same targets on the three shapes, in five
-/// iterations (the paper's formulation needs about five for 1e-6 degrees on the dome), with a
-/// smaller factor than one normal per edge.
+/// Wall normals as differences of cell points (the default): the same targets on the three
+/// shapes, in five iterations (the paper's formulation needs about five for 1e-6 degrees on
+/// the dome), with a smaller factor than one normal per edge.
 #[test]
 fn cell_points_make_honeycombs_in_five_iterations_with_a_smaller_factor() {
     for shape in [Shape::Saddle, Shape::Dome, Shape::Cylinder] {
