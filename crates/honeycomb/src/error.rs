@@ -39,3 +39,28 @@ fn line_suffix(line: &usize) -> String {
         format!(":{line}")
     }
 }
+
+/// A number as a message shows it: plainly at everyday sizes, in exponent form far from them
+/// (`1e308`, not three hundred digits).
+pub fn shown(x: f64) -> String {
+    if x != 0.0 && x.is_finite() && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shown;
+
+    #[test]
+    fn numbers_far_from_everyday_sizes_are_shown_with_an_exponent() {
+        assert_eq!(shown(1e308), "1e308");
+        assert_eq!(shown(-2.5e-9), "-2.5e-9");
+        assert_eq!(shown(0.125), "0.125");
+        assert_eq!(shown(-3.0), "-3");
+        assert_eq!(shown(0.0), "0");
+        assert_eq!(shown(f64::NAN), "NaN");
+    }
+}

@@ -279,6 +279,13 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
         .copied()
         .filter(|&c| !folded(c))
         .collect();
+    if unfolded.is_empty() {
+        return Err(Error::Mesh(format!(
+            "every one of the {} cells of edge length {edge:.4} straddles a place where the \
+             flattening overlaps itself; try other --cells or --method field",
+            placed.cells.len()
+        )));
+    }
     let cells = largest_component(&unfolded);
     let mut index: HashMap<Corner, usize> = HashMap::new();
     let mut mesh_vertices = Vec::new();

@@ -2,13 +2,21 @@
 //! where, and, when there is an obvious one, how to fix it.
 
 use super::{Connectivity, PolyMesh};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 
 /// How many offending vertices a message lists before summarising the rest.
 const LISTED: usize = 5;
 
-/// Accepts a design surface: any non-empty manifold polygon mesh with finite coordinates,
-/// no isolated vertices and no zero-length edges.
+/// Model coordinates beyond this are refused: squared lengths of such meshes overflow or keep
+/// no digits for a cell's size (a 10 km site in micrometres is 1e10).
+pub const MAX_COORDINATE: f64 = 1e12;
+
+/// A face whose corners span less than this share of its longest edge squared has no area
+/// (its corners lie on one line): its normal and any map of it are undefined.
+const FLAT_FACE: f64 = 1e-12;
+
+/// Accepts a design surface: any non-empty manifold polygon mesh with finite coordinates within
+/// [`MAX_COORDINATE`], no isolated vertices, no zero-length edges and no face without area.
 pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
     if mesh.vertices.is_empty() || mesh.faces.is_empty() {
         return Err(Error::Mesh(format!(
@@ -28,6 +36,20 @@ pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
             p.x, p.y, p.z
         )));
     }
+    if let Some((v, p)) = mesh
+        .vertices
+        .iter()
+        .enumerate()
+        .find(|(_, p)| p.to_array().iter().any(|c| c.abs() > MAX_COORDINATE))
+    {
+        return Err(Error::Mesh(format!(
+            "vertex {v} at ({}, {}, {}) lies beyond {} model units; rescale the mesh",
+            shown(p.x),
+            shown(p.y),
+            shown(p.z),
+            shown(MAX_COORDINATE)
+        )));
+    }
     let conn = Connectivity::build(mesh)?;
     let isolated: Vec<usize> = (0..mesh.vertices.len())
         .filter(|&v| conn.valence(v) == 0)
@@ -44,6 +66,7 @@ pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
         )));
     }
     check_edge_lengths(mesh, &conn)?;
+    check_face_areas(mesh)?;
     Ok(conn)
 }
 
@@ -86,6 +109,27 @@ fn check_edge_lengths(mesh: &PolyMesh, conn: &Connectivity) -> Result<()> {
                 "zero-length edge {a}-{b}: vertex {a} at ({}, {}, {}) and vertex {b} at \
                  ({}, {}, {}) coincide; merge them",
                 pa.x, pa.y, pa.z, pb.x, pb.y, pb.z
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// A face whose corners all lie on one line: every corner's two edges are parallel.
+fn check_face_areas(mesh: &PolyMesh) -> Result<()> {
+    for (f, face) in mesh.faces.iter().enumerate() {
+        let corner = |i: usize| mesh.vertices[face[i % face.len()]];
+        let (mut span, mut longest) = (0.0f64, 0.0f64);
+        for i in 0..face.len() {
+            let (p, q, r) = (corner(i), corner(i + 1), corner(i + 2));
+            span = span.max((q - p).cross(r - q).norm());
+            longest = longest.max((q - p).norm_squared());
+        }
+        if span <= FLAT_FACE * longest {
+            let listed: Vec<String> = face.iter().map(|v| v.to_string()).collect();
+            return Err(Error::Mesh(format!(
+                "face {f} (vertices {}) has no area: its corners lie on one line; collapse it",
+                listed.join(", ")
             )));
         }
     }
@@ -298,6 +342,40 @@ mod tests {
         assert!(message.contains("zero-length edge 7-8"), "{message}");
         assert!(message.contains("vertex 7 at (2.598"), "{message}");
         assert!(message.contains("merge them"), "{message}");
+    }
+
+    #[test]
+    fn a_cell_without_area() {
+        let mut mesh = hexagon_pair();
+        // The second cell's corners spread along the x axis: no zero-length edge, no area.
+        for (k, &v) in [1, 2, 9, 8, 7, 6].iter().enumerate() {
+            mesh.vertices[v] = Vec3::new(k as f64, 0.0, 0.0);
+        }
+        let message = error(validate_surface_mesh(&mesh));
+        assert!(
+            message.contains("face 1 (vertices 1, 2, 9, 8, 7, 6) has no area"),
+            "{message}"
+        );
+        // A thin sliver still has area, and is accepted.
+        let mut mesh = hexagon_pair();
+        for &v in &[6, 7, 8, 9] {
+            mesh.vertices[v].y *= 1e-6;
+        }
+        validate_base_mesh(&mesh).unwrap();
+    }
+
+    #[test]
+    fn a_coordinate_too_large_to_compute_with() {
+        let mut mesh = hexagon_pair();
+        mesh.vertices[4].z = 1e308;
+        let message = error(validate_surface_mesh(&mesh));
+        assert!(message.contains("vertex 4 at ("), "{message}");
+        assert!(message.contains("1e308) lies beyond 1e12"), "{message}");
+        // A building in micrometres is fine.
+        for p in &mut mesh.vertices {
+            *p = Vec3::new(p.x * 1e9, p.y * 1e9, 0.0);
+        }
+        validate_base_mesh(&mesh).unwrap();
     }
 
     #[test]

@@ -31,6 +31,19 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<LoadedMesh> {
             _ => {}
         }
     }
+    if vertices.is_empty() && faces.is_empty() {
+        // Read lossily, binary data shows as NULs and replacement characters.
+        let binary = text.contains(['\0', char::REPLACEMENT_CHARACTER]);
+        return Err(parse_error(
+            path,
+            0,
+            if binary {
+                "not a text OBJ file (binary data): is it another format?"
+            } else {
+                "no vertex (`v`) or face (`f`) records"
+            },
+        ));
+    }
     // Positive indices may refer to vertices defined later, so they are checked at the end.
     check_face_range(&faces, &face_lines, vertices.len(), 1, path)?;
     Ok(LoadedMesh {
@@ -173,6 +186,9 @@ mod tests {
     fn empty_file() {
         assert!(error("").contains("empty file"));
         assert!(error(" \n\t\n").contains("empty file"));
+        assert!(error("# only a comment\no name\n").contains("no vertex (`v`) or face (`f`)"));
+        let binary = String::from_utf8_lossy(&[0x7f, 0x45, 0x4c, 0x46, 0, 0xff, 0xfe]);
+        assert!(error(&binary).contains("not a text OBJ file"));
     }
 
     #[test]
