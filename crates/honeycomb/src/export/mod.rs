@@ -4,13 +4,20 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
-use crate::mesh::{write_atomically, write_mesh};
+use crate::mesh::Outputs;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::structure::{Honeycomb, StructureJson};
 use std::path::Path;
 
 pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
-    write_atomically(path, |w| {
+    let mut outputs = Outputs::new();
+    stage_json(&mut outputs, path, value)?;
+    outputs.commit()
+}
+
+/// Writes `value` as pretty JSON into a set of outputs.
+pub fn stage_json(outputs: &mut Outputs, path: &Path, value: &impl serde::Serialize) -> Result<()> {
+    outputs.file(path, |w| {
         serde_json::to_writer_pretty(&mut *w, value).map_err(std::io::Error::other)?;
         writeln!(w)
     })
@@ -36,14 +43,20 @@ pub fn write_structure_with(
         path: dir.to_path_buf(),
         source,
     })?;
-    write_mesh(&dir.join("base.obj"), &honeycomb.base)?;
-    write_mesh(&dir.join("offset.obj"), &honeycomb.offset)?;
-    write_mesh(&dir.join("walls.obj"), &honeycomb.walls())?;
-    write_json(&dir.join("structure.json"), &honeycomb.to_json())?;
+    let mut outputs = Outputs::new();
+    outputs.mesh(&dir.join("base.obj"), &honeycomb.base)?;
+    outputs.mesh(&dir.join("offset.obj"), &honeycomb.offset)?;
+    outputs.mesh(&dir.join("walls.obj"), &honeycomb.walls())?;
+    stage_json(
+        &mut outputs,
+        &dir.join("structure.json"),
+        &honeycomb.to_json(),
+    )?;
     for (name, mesh) in extra {
-        write_mesh(&dir.join(name), mesh)?;
+        outputs.mesh(&dir.join(name), mesh)?;
     }
-    write_json(&dir.join("report.json"), report)
+    stage_json(&mut outputs, &dir.join("report.json"), report)?;
+    outputs.commit()
 }
 
 /// Reads `DIR/structure.json` back into a honeycomb, checking that it is one of ours.

@@ -5,9 +5,12 @@
 //! face numbers in messages are 0-based, as everywhere in the library; OBJ index values are
 //! quoted as written in the file.
 
+mod atomic;
 mod obj;
 mod off;
 mod ply;
+
+pub use atomic::{write_atomically, Outputs};
 
 pub use obj::{parse_obj, write_obj};
 pub use off::{parse_off, write_off};
@@ -16,11 +19,8 @@ pub use ply::{parse_ply, write_ply};
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
-use std::ffi::OsString;
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// A mesh read from a file, with the non-fatal oddities found while reading it.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -72,53 +72,23 @@ pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
 
 /// Writes `mesh` as OBJ, OFF or ASCII PLY, chosen by the extension of `path`.
 pub fn write_mesh(path: &Path, mesh: &PolyMesh) -> Result<()> {
+    let mut outputs = Outputs::new();
+    outputs.mesh(path, mesh)?;
+    outputs.commit()
+}
+
+/// `mesh` in the format `path` names, for writing to `path`.
+fn mesh_writer<'a>(
+    path: &Path,
+    mesh: &'a PolyMesh,
+) -> Result<impl FnOnce(&mut dyn Write) -> std::io::Result<()> + 'a> {
     let format = Format::of(path).map_err(|message| {
         Error::Parameter(format!("cannot write {}: {message}", path.display()))
     })?;
-    write_atomically(path, |w| match format {
+    Ok(move |w: &mut dyn Write| match format {
         Format::Obj => write_obj(w, mesh),
         Format::Off => write_off(w, mesh),
         Format::Ply => write_ply(w, mesh),
-    })
-}
-
-/// Distinguishes the temporary files of concurrent writes from one process.
-static TEMP_COUNTER: AtomicUsize = AtomicUsize::new(0);
-
-/// Runs `write` on a temporary file next to `path`, then renames it over `path`, so that readers
-/// see either the old file or the complete new one, never a partial write. On failure the
-/// temporary file is removed and `path` is left untouched.
-pub fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<()> {
-    let name = path.file_name().ok_or_else(|| {
-        Error::Parameter(format!("cannot write {}: not a file name", path.display()))
-    })?;
-    let mut temp_name = OsString::from(".");
-    temp_name.push(name);
-    temp_name.push(format!(
-        ".tmp-{}-{}",
-        std::process::id(),
-        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    // Same directory as the target: a rename is only atomic within one file system.
-    let temp = path.with_file_name(temp_name);
-    let result = (|| {
-        let mut writer = BufWriter::new(File::create(&temp)?);
-        write(&mut writer)?;
-        let file = writer.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&temp, path)
-    })();
-    result.map_err(|source| {
-        // Best effort: the write error is the one worth reporting.
-        let _ = std::fs::remove_file(&temp);
-        Error::Io {
-            path: path.to_path_buf(),
-            source,
-        }
     })
 }
 
