@@ -1,12 +1,12 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{load, optimize_and_write, BrokenCells, SolveArgs};
+use crate::optimize::{load, optimize_and_write, solve_options, BrokenCells, SolveArgs};
 use crate::progress::{Output, Spinner};
-use honeycomb::export::write_json;
+use honeycomb::export::stage_json;
 use honeycomb::init::{
     init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, Initialized, Method,
 };
-use honeycomb::mesh::{write_mesh, PolyMesh};
+use honeycomb::mesh::{write_mesh, Outputs, PolyMesh};
 use honeycomb::optimize::SECOND_TRY_MIN_EDGE;
 use honeycomb::report::Report;
 use honeycomb::{Error, Result};
@@ -110,10 +110,13 @@ pub fn run(args: Args) -> Result<()> {
     let options = args.init.options()?;
     let surface = load(&args.surface, output)?;
     let made = make(&surface, &options, output).map_err(|e| name_file(&args.surface, e))?;
-    write_mesh(&args.output, &made.base)?;
+    // Both or neither: a mesh without the report asked for looks like a finished run.
+    let mut outputs = Outputs::new();
+    outputs.mesh(&args.output, &made.base)?;
     if let Some(path) = &args.report {
-        write_json(path, &made.report)?;
+        stage_json(&mut outputs, path, &made.report)?;
     }
+    outputs.commit()?;
     print_report(&made, output, &args.output)
 }
 
@@ -200,6 +203,13 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
             "pipeline takes the surface as its argument; --surface is for `optimize`".into(),
         ));
     }
+    if args.opts.axes.is_some() {
+        return Err(Error::Parameter(
+            "--axes lists one axis per vertex of a given base mesh, and pipeline makes its own: \
+             run `init`, then `optimize --axes`"
+                .into(),
+        ));
+    }
     let options = args.init.options()?;
     args.opts.options()?;
     let output = args.opts.output();
@@ -238,10 +248,14 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
             path: args.output.clone(),
             source,
         })?;
+        // The options that depend on the mesh are checked before anything is written.
+        solve_options(&args.opts, &made.base, Some(&surface))?;
         // Before the solve, so that they are there to inspect whatever it gives.
-        write_mesh(&args.output.join("initial.obj"), &made.base)?;
-        write_mesh(&args.output.join("surface.obj"), &surface)?;
-        write_json(&args.output.join("init.json"), &made.report)?;
+        let mut outputs = Outputs::new();
+        outputs.mesh(&args.output.join("initial.obj"), &made.base)?;
+        outputs.mesh(&args.output.join("surface.obj"), &surface)?;
+        stage_json(&mut outputs, &args.output.join("init.json"), &made.report)?;
+        outputs.commit()?;
         let dir = &args.output;
         match optimize_and_write(
             &made.base,

@@ -2,6 +2,7 @@
 
 use crate::progress::{IterationBar, Output};
 use honeycomb::analysis::{extruded_along_normals, read_directions, shading_report};
+use honeycomb::error::shown;
 use honeycomb::geometry::read_axes;
 use honeycomb::mesh::{
     nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
@@ -184,21 +185,24 @@ impl SolveArgs {
         if let Some(c) = self.depth {
             if !c.is_finite() || c <= 0.0 {
                 return Err(Error::Parameter(format!(
-                    "--depth {c}: expected a positive length in model units"
+                    "--depth {}: expected a positive length in model units",
+                    shown(c)
                 )));
             }
         }
         if let Some(t) = self.thickness {
             if !t.is_finite() || t <= 0.0 {
                 return Err(Error::Parameter(format!(
-                    "--thickness {t}: expected a positive length in model units"
+                    "--thickness {}: expected a positive length in model units",
+                    shown(t)
                 )));
             }
         }
         if let Some(l) = self.min_edge {
             if !l.is_finite() || l <= 0.0 {
                 return Err(Error::Parameter(format!(
-                    "--min-edge {l}: expected a positive length in model units"
+                    "--min-edge {}: expected a positive length in model units",
+                    shown(l)
                 )));
             }
         }
@@ -211,10 +215,11 @@ impl SolveArgs {
                     .into(),
             ));
         }
-        if !self.eps.is_finite() || self.eps <= 0.0 || self.eps > 1e3 {
+        // Below 1e-12 the regularization is lost in roundoff against unit weights.
+        if !self.eps.is_finite() || !(1e-12..=1e3).contains(&self.eps) {
             return Err(Error::Parameter(format!(
-                "--eps {}: expected a positive number, typically 1e-3",
-                self.eps
+                "--eps {}: expected a number from 1e-12 to 1e3, typically 1e-3",
+                shown(self.eps)
             )));
         }
         let weights = Weights {
@@ -253,6 +258,14 @@ impl SolveArgs {
             }
             None => None,
         };
+        let parallel = self.parallel.then_some(ParallelOptions {
+            depth: self.depth,
+            weight: self.w_parallel,
+            depth_weight: self.w_depth,
+        });
+        if let Some(p) = &parallel {
+            p.validate_as(["--depth", "--w-parallel", "--w-depth"])?;
+        }
         Ok(OptimizeOptions {
             weights,
             quads,
@@ -263,11 +276,7 @@ impl SolveArgs {
             },
             thickness: self.thickness,
             min_edge: self.min_edge,
-            parallel: self.parallel.then_some(ParallelOptions {
-                depth: self.depth,
-                weight: self.w_parallel,
-                depth_weight: self.w_depth,
-            }),
+            parallel,
             wall_normals: match (self.cell_points, self.per_edge_normals) {
                 (true, _) => WallNormals::CellPoints,
                 (_, true) => WallNormals::PerEdge,
@@ -355,6 +364,23 @@ pub enum BrokenCells {
     Drop,
 }
 
+/// The solve's options for `base`, every one checked (against the mesh too), and the sun
+/// path (`--sun-path`, empty without it).
+pub fn solve_options(
+    args: &SolveArgs,
+    base: &PolyMesh,
+    surface: Option<&PolyMesh>,
+) -> Result<(OptimizeOptions, Vec<Vec3>)> {
+    let mut options = args.options()?;
+    args.add_axes(&mut options, base, surface)?;
+    options.validate(base)?;
+    let sun_path = match &args.sun_path {
+        Some(path) => read_directions(path)?,
+        None => Vec::new(),
+    };
+    Ok((options, sun_path))
+}
+
 /// Optimizes, measures, writes the structure directory and prints the result.
 pub fn optimize_and_write(
     base: &PolyMesh,
@@ -363,12 +389,7 @@ pub fn optimize_and_write(
     dir: &Path,
     broken: BrokenCells,
 ) -> Result<(Report, Option<PolyMesh>)> {
-    let mut options = args.options()?;
-    args.add_axes(&mut options, base, surface)?;
-    let sun_path = match &args.sun_path {
-        Some(path) => read_directions(path)?,
-        None => Vec::new(),
-    };
+    let (options, sun_path) = solve_options(args, base, surface)?;
     // Before the solve, so that an unusable -o fails at once, not after a long run.
     if dir.exists() && !dir.is_dir() {
         return Err(Error::Parameter(format!(
@@ -376,10 +397,30 @@ pub fn optimize_and_write(
             dir.display()
         )));
     }
+    let created = !dir.exists();
     std::fs::create_dir_all(dir).map_err(|source| Error::Io {
         path: dir.to_path_buf(),
         source,
     })?;
+    let result = solve_and_write(base, surface, args, dir, broken, options, &sun_path);
+    if result.is_err() && created {
+        // A directory made for outputs that never came (a failure before any was written);
+        // remove_dir leaves one that has files.
+        let _ = std::fs::remove_dir(dir);
+    }
+    result
+}
+
+/// `optimize_and_write` once the options are checked and `dir` exists.
+fn solve_and_write(
+    base: &PolyMesh,
+    surface: Option<&PolyMesh>,
+    args: &SolveArgs,
+    dir: &Path,
+    broken: BrokenCells,
+    options: OptimizeOptions,
+    sun_path: &[Vec3],
+) -> Result<(Report, Option<PolyMesh>)> {
     let output = args.output();
     let nonconvex = nonconvex_faces(base);
     if !nonconvex.is_empty() {
@@ -445,7 +486,7 @@ pub fn optimize_and_write(
             &before,
             &optimized.honeycomb,
             light,
-            &sun_path,
+            sun_path,
         ));
     }
     let quads: Vec<(&str, &PolyMesh)> = optimized.quads.iter().map(|q| ("quads.obj", q)).collect();

@@ -118,7 +118,19 @@ fn empty_file() {
     let line = optimize_fails(&dir, &base, &["empty file"]);
     assert!(!line.contains(":0:"), "{line}");
     let base = dir.write("blank.obj", "\n  \n# only a comment\n");
-    optimize_fails(&dir, &base, &["blank.obj", "empty"]);
+    optimize_fails(
+        &dir,
+        &base,
+        &["blank.obj", "no vertex (`v`) or face (`f`) records"],
+    );
+    // Binary data with an .obj name.
+    let path = dir.join("binary.obj");
+    std::fs::write(
+        &path,
+        [0x7f, b'E', b'L', b'F', 2, 1, 0, 0, 0xff, 0xfe, 0x80],
+    )
+    .unwrap();
+    optimize_fails(&dir, &path, &["not a text OBJ file"]);
 }
 
 #[test]
@@ -379,8 +391,61 @@ fn negative_weight() {
 #[test]
 fn zero_eps() {
     let dir = TempDir::new("zero_eps");
-    optimize_with_fails(&dir, &["--eps", "0"], &["--eps 0", "positive"]);
-    optimize_with_fails(&dir, &["--eps", "-1"], &["--eps -1", "positive"]);
+    optimize_with_fails(&dir, &["--eps", "0"], &["--eps 0", "from 1e-12"]);
+    optimize_with_fails(&dir, &["--eps", "-1"], &["--eps -1", "from 1e-12"]);
+    // Subnormal: the system would be singular in roundoff.
+    optimize_with_fails(&dir, &["--eps", "1e-320"], &["--eps 1e-320", "from 1e-12"]);
+}
+
+#[test]
+fn a_cell_without_area() {
+    let dir = TempDir::new("a_cell_without_area");
+    let (mut vertices, faces) = hexagon_pair();
+    // The second cell's corners spread along a line: distinct vertices, no area.
+    for (k, v) in [1, 2, 9, 8, 7, 6].into_iter().enumerate() {
+        vertices[v] = [k as f64, 0.0, 0.0];
+    }
+    let base = dir.write("flat_cell.obj", &obj(&vertices, &faces));
+    optimize_fails(
+        &dir,
+        &base,
+        &["face 1 (vertices 1, 2, 9, 8, 7, 6) has no area"],
+    );
+}
+
+#[test]
+fn a_coordinate_beyond_computing_range() {
+    let dir = TempDir::new("a_coordinate_beyond_computing_range");
+    let (mut vertices, faces) = hexagon_pair();
+    vertices[3][2] = 1e308;
+    let base = dir.write("far.obj", &obj(&vertices, &faces));
+    optimize_fails(&dir, &base, &["vertex 3 at (0, -1, 1e308)", "beyond 1e12"]);
+}
+
+#[test]
+fn lengths_far_beyond_the_cells() {
+    // The disk's mean edge length is 1: these ask for a structure a million cells deep.
+    let dir = TempDir::new("lengths_far_beyond_the_cells");
+    optimize_with_fails(
+        &dir,
+        &["--thickness", "1e308"],
+        &["thickness 1e308", "mean edge length"],
+    );
+    optimize_with_fails(
+        &dir,
+        &["--min-edge", "1e308"],
+        &["minimum edge length 1e308", "mean edge length"],
+    );
+    optimize_with_fails(
+        &dir,
+        &["--parallel", "--depth", "1e6"],
+        &["depth 1e6", "mean edge length"],
+    );
+    optimize_with_fails(
+        &dir,
+        &["--parallel", "--w-parallel", "0"],
+        &["--w-parallel 0", "above 0"],
+    );
 }
 
 #[test]

@@ -254,6 +254,41 @@ fn bad_surfaces_and_options_are_named() {
     let empty = tmp.write("empty.obj", "");
     init_fails(&tmp, &empty, &cells, &["empty.obj"]);
     init_fails(&tmp, &tmp.join("nothing.obj"), &cells, &["nothing.obj"]);
+    // Strokes that steer nothing: far off the surface, or of zero length (both methods).
+    for (name, text) in [
+        ("far.obj", "v 0 0 1000\nv 1 0 1000\nl 1 2\n"),
+        ("point.obj", "v 0 0 0\nv 0 0 0\nl 1 2\n"),
+    ] {
+        let strokes = tmp.write(name, text);
+        for method in ["field", "flatten"] {
+            init_fails(
+                &tmp,
+                &surface,
+                &[
+                    "--cells",
+                    "100",
+                    "--method",
+                    method,
+                    "--align",
+                    strokes.to_str().unwrap(),
+                ],
+                &["--align", "stroke"],
+            );
+        }
+    }
+    // A report that cannot be written takes the mesh with it: both or neither.
+    let out_dir = tmp.join("out");
+    let out = run([
+        "init",
+        surface.to_str().unwrap(),
+        "--cells",
+        "100",
+        "-o",
+        out_dir.join("base.obj").to_str().unwrap(),
+        "--report",
+        tmp.join("nowhere/init.json").to_str().unwrap(),
+    ]);
+    assert_clean_failure(&out, &["nowhere/init.json"], Some(&out_dir));
     // An output format nobody reads.
     let out = run([
         "init",
@@ -426,4 +461,32 @@ fn pipeline_with_the_field_method() {
         "{}",
         stderr(&out)
     );
+}
+
+/// Options that the made mesh shows to be unusable stop the pipeline before it writes anything.
+#[test]
+fn pipeline_checks_its_options_before_writing() {
+    let tmp = TempDir::new("pipeline_options");
+    let surface = surface_file(&tmp, "dome");
+    let axes = tmp.write("axes.txt", "0 0 1\n");
+    for (extra, keywords) in [
+        (
+            vec!["--thickness", "1e308"],
+            vec!["thickness 1e308", "mean edge length"],
+        ),
+        (
+            vec!["--parallel", "--w-parallel", "0"],
+            vec!["--w-parallel 0"],
+        ),
+        (
+            vec!["--axes", axes.to_str().unwrap()],
+            vec!["--axes", "init", "optimize --axes"],
+        ),
+    ] {
+        let dir = tmp.join("out");
+        let mut args = vec!["pipeline", surface.to_str().unwrap(), "--cells", "100"];
+        args.extend(extra);
+        args.extend(["-o", dir.to_str().unwrap()]);
+        assert_clean_failure(&run(&args), &keywords, Some(&dir));
+    }
 }

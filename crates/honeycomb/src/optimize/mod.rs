@@ -26,7 +26,7 @@ use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
     PrescribedAxes,
 };
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::solve::{Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolverOptions};
@@ -92,6 +92,25 @@ pub fn check_thickness(t: f64) -> Result<()> {
     Ok(())
 }
 
+/// Thickness and depth beyond this many mean edge lengths are refused: no structure is that
+/// deep, and the solve would lose the cells' scale in roundoff.
+const MAX_LENGTH: f64 = 1e3;
+/// A minimum edge length beyond this many mean edge lengths would have every edge grow as
+/// much, which is a different mesh, not an optimized one.
+const MAX_MIN_EDGE: f64 = 10.0;
+
+/// Refuses a length parameter more than `ratio` mean edge lengths `edge` of the base mesh.
+fn check_scale(label: &str, length: f64, ratio: f64, edge: f64) -> Result<()> {
+    if length > ratio * edge {
+        return Err(Error::Parameter(format!(
+            "{label} {}: more than {ratio} times the base mesh's mean edge length \
+             {edge:.4}; expected a length in the model's units",
+            shown(length)
+        )));
+    }
+    Ok(())
+}
+
 /// The second try's minimum edge length, in mean edge lengths of the base mesh.
 pub const SECOND_TRY_MIN_EDGE: f64 = 0.3;
 /// The second try's iterations at least: without the fairness the iteration is slower (Yas
@@ -147,10 +166,13 @@ impl OptimizeOptions {
         options
     }
 
-    fn validate(&self, num_vertices: usize) -> Result<()> {
+    /// Checks the options against the (valid) base mesh they are for.
+    pub fn validate(&self, base: &PolyMesh) -> Result<()> {
         self.weights.validate()?;
+        let edge = base.mean_edge_length();
         if let Some(t) = self.thickness {
             check_thickness(t)?;
+            check_scale("thickness", t, MAX_LENGTH, edge)?;
         }
         if let Some(length) = self.min_edge {
             if !length.is_finite() || length <= 0.0 {
@@ -158,12 +180,16 @@ impl OptimizeOptions {
                     "minimum edge length {length}: expected a positive length"
                 )));
             }
+            check_scale("minimum edge length", length, MAX_MIN_EDGE, edge)?;
         }
         if let Some(p) = &self.parallel {
             p.validate()?;
+            if let Some(depth) = p.depth {
+                check_scale("depth", depth, MAX_LENGTH, edge)?;
+            }
         }
         if let Some(a) = &self.axes {
-            a.validate(num_vertices)?;
+            a.validate(base.vertices.len())?;
         }
         if let Some(q) = &self.quads {
             q.validate()?;
@@ -346,9 +372,9 @@ pub fn optimize(
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Optimized> {
-    options.validate(base.vertices.len())?;
-    let options = &options.resolved();
     let conn = validate_base_mesh(base)?;
+    options.validate(base)?;
+    let options = &options.resolved();
     let mut weights = options.weights;
     if let Some(s) = surface {
         validate_surface_mesh(s)?;

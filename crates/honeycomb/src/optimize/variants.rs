@@ -29,15 +29,21 @@ impl Default for ParallelOptions {
 
 impl ParallelOptions {
     pub fn validate(&self) -> Result<()> {
+        self.validate_as(["depth", "parallelity weight", "depth weight"])
+    }
+
+    /// `validate` naming the depth, the weight and the depth weight by `labels` (a front's
+    /// flags).
+    pub fn validate_as(&self, [depth, weight, depth_weight]: [&str; 3]) -> Result<()> {
         if let Some(c) = self.depth {
             if !c.is_finite() || c <= 0.0 {
                 return Err(Error::Parameter(format!(
-                    "depth {c}: expected a positive length in model units"
+                    "{depth} {c}: expected a positive length in model units"
                 )));
             }
         }
-        check_weight("parallelity weight", self.weight, false)?;
-        check_weight("depth weight", self.depth_weight, true)
+        check_weight(weight, self.weight, false)?;
+        check_weight(depth_weight, self.depth_weight, true)
     }
 }
 

@@ -6,7 +6,7 @@ use super::ordering::block_order;
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
@@ -81,9 +81,11 @@ impl Cholesky {
                 Default::default(),
             )
             .map_err(|e| {
+                let LltError::NonPositivePivot { index } = e;
                 Error::Solver(format!(
-                    "the linearized system is not positive definite ({e:?}); \
-                     try a larger regularization (--eps)"
+                    "the linearized system is not positive definite (pivot {index} of {}); \
+                     try a larger regularization (--eps)",
+                    matrix.n
                 ))
             })?;
         self.has_factor = true;

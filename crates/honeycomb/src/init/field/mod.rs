@@ -87,7 +87,7 @@ pub fn field_hex_mesh(
     }
     let spacing = SQRT3 * edge;
     let sampling = Sampling::new(&s, SAMPLE_SPACING * spacing)?;
-    let fixed = orientation::constraints(&sampling, strokes, follow_boundary, spacing);
+    let fixed = orientation::constraints(&sampling, strokes, follow_boundary, spacing)?;
     let Sampling {
         points,
         normals,

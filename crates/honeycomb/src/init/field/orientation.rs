@@ -13,6 +13,7 @@
 use super::hierarchy::Level;
 use super::sampling::Sampling;
 use super::tangent::{turned, unit_tangent, SplitMix, SIN60};
+use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use std::collections::HashMap;
 
@@ -68,7 +69,7 @@ pub fn constraints(
     strokes: &[Vec<Vec3>],
     follow_boundary: bool,
     spacing: f64,
-) -> Vec<Constraint> {
+) -> Result<Vec<Constraint>> {
     let mut fixed: Vec<Constraint> = sampling
         .boundary_tangents
         .iter()
@@ -78,11 +79,12 @@ pub fn constraints(
         })
         .collect();
     if strokes.iter().all(|s| s.len() < 2) {
-        return fixed;
+        return Ok(fixed);
     }
     let radius = 0.5 * spacing;
     let grid = PointGrid::new(&sampling.points, radius);
     let mut nearest: Vec<f64> = vec![f64::INFINITY; sampling.points.len()];
+    let mut followed = false;
     for line in strokes {
         for w in line.windows(2) {
             let (a, b) = (w[0], w[1]);
@@ -104,13 +106,21 @@ pub fn constraints(
                         if let Some(u) = unit_tangent(direction, sampling.normals[v]) {
                             nearest[v] = d;
                             fixed[v] = Constraint::Along(u);
+                            followed = true;
                         }
                     }
                 });
             }
         }
     }
-    fixed
+    if !followed {
+        // Strokes that steer nothing are a mistake in the file, not a wish to be ignored.
+        return Err(Error::Parameter(format!(
+            "--align: no stroke runs along the surface within {radius:.4} of it (each is \
+             too far away, of zero length or along the surface's normal)"
+        )));
+    }
+    Ok(fixed)
 }
 
 /// Points bucketed in cubes of side `cell`, to find those within `cell` of a probe.
