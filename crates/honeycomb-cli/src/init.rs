@@ -1,6 +1,6 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{load, optimize_and_write, solve_options, BrokenCells, SolveArgs};
+use crate::optimize::{load, name_file, optimize_and_write, solve_options, BrokenCells, SolveArgs};
 use crate::progress::{Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
@@ -54,6 +54,12 @@ impl InitArgs {
             (None, Some(l)) => CellSize::EdgeLength(l),
             (None, None) => unreachable!("clap requires one of --cells and --edge-length"),
         };
+        if self.flatten.is_some() && self.method == Method::Field {
+            return Err(Error::Parameter(
+                "--flatten picks how --method flatten flattens; --method field does not flatten"
+                    .into(),
+            ));
+        }
         let align = match self.align.as_str() {
             "boundary" => Align::Boundary,
             "none" => Align::None,
@@ -173,14 +179,6 @@ fn print_settling(report: &Report) {
             "note: {dropped} boundary cells that the solve broke (collapsed cap, mirrored node \
              or crossed wall) were dropped; initial.obj is the mesh without them"
         );
-    }
-}
-
-/// Names the surface file in a mesh error.
-fn name_file(path: &Path, e: Error) -> Error {
-    match e {
-        Error::Mesh(m) => Error::Mesh(format!("{}: {m}", path.display())),
-        e => e,
     }
 }
 

@@ -84,12 +84,12 @@ pub struct SolveArgs {
     /// With --parallel: a soft constant depth |v_i - v'_i| = C (model units).
     #[arg(long, allow_negative_numbers = true)]
     pub depth: Option<f64>,
-    /// Weight of edge parallelity (with --parallel).
-    #[arg(long, default_value_t = ParallelOptions::default().weight, allow_negative_numbers = true)]
-    pub w_parallel: f64,
-    /// Weight of the constant depth (with --depth).
-    #[arg(long, default_value_t = ParallelOptions::default().depth_weight, allow_negative_numbers = true)]
-    pub w_depth: f64,
+    /// Weight of edge parallelity (with --parallel) [default: 1].
+    #[arg(long, allow_negative_numbers = true)]
+    pub w_parallel: Option<f64>,
+    /// Weight of the constant depth (with --depth) [default: 0.1].
+    #[arg(long, allow_negative_numbers = true)]
+    pub w_depth: Option<f64>,
     /// Prescribed node axes (Fig. 10): a text file with one direction "x y z" per base-mesh
     /// vertex, in vertex order ("0 0 0" leaves a vertex free).
     #[arg(long, conflicts_with = "light")]
@@ -115,15 +115,17 @@ pub struct SolveArgs {
     /// [default: the direction whose quads start closest to planar].
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub quad_direction: Option<Vec3>,
-    /// Weight of quad planarity (the paper's w_cons^faces).
-    #[arg(long, default_value_t = QuadOptions::default().w_cons_faces, allow_negative_numbers = true)]
-    pub w_cons_faces: f64,
-    /// Weight of zigzag-polyline fairness (the paper's w_fair^zig).
-    #[arg(long, default_value_t = QuadOptions::default().w_fair_zigzag, allow_negative_numbers = true)]
-    pub w_fair_zig: f64,
-    /// Weight of straight-polyline fairness (the paper's w_fair^str).
-    #[arg(long, default_value_t = QuadOptions::default().w_fair_straight, allow_negative_numbers = true)]
-    pub w_fair_str: f64,
+    /// Weight of quad planarity (the paper's w_cons^faces; with --quads) [default: 0.1].
+    #[arg(long, allow_negative_numbers = true)]
+    pub w_cons_faces: Option<f64>,
+    /// Weight of zigzag-polyline fairness (the paper's w_fair^zig; with --quads) [default:
+    /// 0.01].
+    #[arg(long, allow_negative_numbers = true)]
+    pub w_fair_zig: Option<f64>,
+    /// Weight of straight-polyline fairness (the paper's w_fair^str; with --quads) [default:
+    /// 0.01].
+    #[arg(long, allow_negative_numbers = true)]
+    pub w_fair_str: Option<f64>,
     /// Guide the node axes towards the surface normals in the first iterations, so that walls
     /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
     #[arg(long, default_value_t = Weights::default().guide, allow_negative_numbers = true)]
@@ -155,8 +157,35 @@ impl SolveArgs {
             )));
         }
         // Checked here rather than by clap, whose message spans several lines.
+        let quads = self.quads.is_some();
         for (given, flag, needs, present) in [
             (self.depth.is_some(), "--depth", "--parallel", self.parallel),
+            (
+                self.w_parallel.is_some(),
+                "--w-parallel",
+                "--parallel",
+                self.parallel,
+            ),
+            (
+                self.w_depth.is_some(),
+                "--w-depth",
+                "--depth",
+                self.depth.is_some(),
+            ),
+            (
+                self.w_axes.is_some(),
+                "--w-axes",
+                "--axes or --light",
+                self.axes.is_some() || self.light.is_some(),
+            ),
+            (
+                self.w_cons_faces.is_some(),
+                "--w-cons-faces",
+                "--quads",
+                quads,
+            ),
+            (self.w_fair_zig.is_some(), "--w-fair-zig", "--quads", quads),
+            (self.w_fair_str.is_some(), "--w-fair-str", "--quads", quads),
             (
                 self.sun_path.is_some(),
                 "--sun-path",
@@ -243,12 +272,13 @@ impl SolveArgs {
         ])?;
         let quads = match self.quads {
             Some(pattern) => {
+                let defaults = QuadOptions::default();
                 let quads = QuadOptions {
                     pattern,
                     direction: self.quad_direction,
-                    w_cons_faces: self.w_cons_faces,
-                    w_fair_zigzag: self.w_fair_zig,
-                    w_fair_straight: self.w_fair_str,
+                    w_cons_faces: self.w_cons_faces.unwrap_or(defaults.w_cons_faces),
+                    w_fair_zigzag: self.w_fair_zig.unwrap_or(defaults.w_fair_zigzag),
+                    w_fair_straight: self.w_fair_str.unwrap_or(defaults.w_fair_straight),
                 };
                 quads.validate().map_err(|e| match e {
                     Error::Parameter(m) => Error::Parameter(format!("--quads: {m}")),
@@ -260,8 +290,10 @@ impl SolveArgs {
         };
         let parallel = self.parallel.then_some(ParallelOptions {
             depth: self.depth,
-            weight: self.w_parallel,
-            depth_weight: self.w_depth,
+            weight: self.w_parallel.unwrap_or(ParallelOptions::default().weight),
+            depth_weight: self
+                .w_depth
+                .unwrap_or(ParallelOptions::default().depth_weight),
         });
         if let Some(p) = &parallel {
             p.validate_as(["--depth", "--w-parallel", "--w-depth"])?;
@@ -577,11 +609,11 @@ pub fn run(args: Args) -> Result<()> {
     let output = args.opts.output();
     let base = load(&args.base, output)?;
     // Validated here too (optimize does it again), so that the message names the file.
-    name_file(&args.base, validate_base_mesh(&base))?;
+    validate_base_mesh(&base).map_err(|e| name_file(&args.base, e))?;
     let surface = match &args.opts.surface {
         Some(path) => {
             let surface = load(path, output)?;
-            name_file(path, validate_surface_mesh(&surface))?;
+            validate_surface_mesh(&surface).map_err(|e| name_file(path, e))?;
             Some(surface)
         }
         None => None,
@@ -597,10 +629,9 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// Prefixes a mesh validation error with the file it is about.
-fn name_file<T>(path: &Path, result: Result<T>) -> Result<()> {
-    match result {
-        Ok(_) => Ok(()),
-        Err(Error::Mesh(message)) => Err(Error::Mesh(format!("{}: {message}", path.display()))),
-        Err(e) => Err(e),
+pub fn name_file(path: &Path, e: Error) -> Error {
+    match e {
+        Error::Mesh(m) => Error::Mesh(format!("{}: {m}", path.display())),
+        e => e,
     }
 }

@@ -1,5 +1,6 @@
 //! `honeycomb serve`: the interactive editor in the browser (a thin front over honeycomb-serve).
 
+use crate::optimize::name_file;
 use crate::progress::{Output, Spinner};
 use honeycomb::generate::Shape;
 use honeycomb::{Error, Result};
@@ -47,6 +48,13 @@ pub fn run(args: Args) -> Result<()> {
             args.vertices
         )));
     }
+    // Saves come later, on a click: a path they can never go to is refused now.
+    if args.saves.exists() && !args.saves.is_dir() {
+        return Err(Error::Parameter(format!(
+            "--saves {}: exists and is not a directory",
+            args.saves.display()
+        )));
+    }
     let source = match &args.input {
         None => Source::Demo {
             shape: args.shape,
@@ -76,7 +84,10 @@ pub fn run(args: Args) -> Result<()> {
     let spinner = Spinner::new(output, "making the honeycomb to edit");
     let server = start(&source, options);
     spinner.finish();
-    let server = server?;
+    let server = match &args.input {
+        Some(path) => server.map_err(|e| name_file(path, e))?,
+        None => server?,
+    };
     // The address on stdout, alone on its line: scripts and the tests read it from there.
     if output == Output::Json {
         println!(

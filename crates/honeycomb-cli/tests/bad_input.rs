@@ -449,6 +449,23 @@ fn lengths_far_beyond_the_cells() {
 }
 
 #[test]
+fn a_weight_for_a_variant_not_asked_for() {
+    // Silently ignored, they would look like they had been used.
+    let dir = TempDir::new("a_weight_for_a_variant_not_asked_for");
+    for (flag, needs) in [
+        ("--w-parallel", "--parallel"),
+        ("--w-depth", "--depth"),
+        ("--w-axes", "--axes or --light"),
+        ("--w-cons-faces", "--quads"),
+        ("--w-fair-zig", "--quads"),
+        ("--w-fair-str", "--quads"),
+    ] {
+        let need = format!("{flag} needs {needs}");
+        optimize_with_fails(&dir, &[flag, "0.5"], &[&need]);
+    }
+}
+
+#[test]
 fn demo_with_three_vertices() {
     let dir = TempDir::new("demo_with_three_vertices");
     let out = dir.join("out");

@@ -221,6 +221,12 @@ fn bad_surfaces_and_options_are_named() {
     init_fails(
         &tmp,
         &surface,
+        &["--cells", "100", "--method", "field", "--flatten", "arap"],
+        &["--flatten", "--method field"],
+    );
+    init_fails(
+        &tmp,
+        &surface,
         &["--cells", "100", "--method", "magic"],
         &["magic", "flatten or field"],
     );

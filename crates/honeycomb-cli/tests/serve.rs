@@ -101,11 +101,17 @@ fn serve_refuses_what_it_cannot_open() {
     let dir = TempDir::new("serve-refusals");
     let empty = dir.write("empty.obj", "");
     let missing = dir.join("no-such-file.obj");
+    // A mesh that reads but is not acceptable: the message names the file too.
+    let isolated = dir.write(
+        "isolated.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nf 1 2 3\n",
+    );
     let saves = dir.join("saves");
     let s = |p: &Path| p.to_str().unwrap().to_string();
-    let cases: [(Vec<String>, &[&str]); 3] = [
+    let cases: [(Vec<String>, &[&str]); 4] = [
         (vec![s(&missing)], &["no-such-file.obj"]),
         (vec![s(&empty)], &["empty.obj"]),
+        (vec![s(&isolated)], &["isolated.obj", "isolated vertex"]),
         (vec!["--vertices".into(), "10".into()], &["--vertices"]),
     ];
     for (args, keywords) in cases {
@@ -114,6 +120,9 @@ fn serve_refuses_what_it_cannot_open() {
         all.extend(["--saves".to_string(), s(&saves)]);
         assert_clean_failure(&run(&all), keywords, Some(&saves));
     }
+    let file = dir.write("saves.txt", "not a directory");
+    let out = run(["serve", "--port", "0", "--saves", &s(&file)]);
+    assert_clean_failure(&out, &["--saves", "saves.txt", "not a directory"], None);
 }
 
 #[test]
