@@ -4,8 +4,11 @@
 mod common;
 
 use common::{assert_clean_failure, run, stdout, TempDir};
+use honeycomb::export::write_structure;
 use honeycomb::generate::hex_disk;
-use honeycomb::mesh::{write_mesh, PolyMesh};
+use honeycomb::geometry::Vec3;
+use honeycomb::mesh::{write_mesh, Connectivity, PolyMesh};
+use honeycomb::structure::{Honeycomb, StructureJson};
 use std::path::{Path, PathBuf};
 
 const S: f64 = 0.866_025_403_784_438_6; // sqrt(3) / 2
@@ -427,4 +430,62 @@ fn cell_points_with_a_variant() {
         &["--cell-points", "--parallel"],
         &["--cell-points", "--parallel"],
     );
+}
+
+/// `DIR/name`: a structure directory of seven flat hexagons of edge 1 with vertical walls (an
+/// exact honeycomb), its structure.json then changed by `change`.
+fn structure_dir(dir: &TempDir, name: &str, change: &dyn Fn(&mut StructureJson)) -> PathBuf {
+    let path = dir.join(name);
+    let base = hex_disk(2.0);
+    let conn = Connectivity::build(&base).unwrap();
+    let axes = vec![Vec3::new(0.0, 0.0, 1.0); base.vertices.len()];
+    let h = Honeycomb::new(base, &conn, axes, 0.3);
+    write_structure(&path, &h, &serde_json::json!({})).unwrap();
+    let mut json = h.to_json();
+    change(&mut json);
+    let text = serde_json::to_string(&json).unwrap();
+    std::fs::write(path.join("structure.json"), text).unwrap();
+    path
+}
+
+#[test]
+fn structure_with_coincident_vertices() {
+    let dir = TempDir::new("structure_with_coincident_vertices");
+    let all_same = structure_dir(&dir, "all-same", &|s| {
+        s.vertices.iter_mut().for_each(|p| *p = [1.0, 1.0, 1.0])
+    });
+    let duplicate = structure_dir(&dir, "duplicate", &|s| {
+        let [a, b] = s.edges[0];
+        s.vertices[b] = s.vertices[a];
+    });
+    for structure in [&all_same, &duplicate] {
+        let written_before = common::entries(structure);
+        let out = dir.join("out");
+        let picture = dir.join("picture.svg");
+        let keywords = ["structure.json", "zero-length edge"];
+        assert_clean_failure(
+            &run(["analyse".as_ref(), structure.as_os_str()]),
+            &keywords,
+            None,
+        );
+        let render = run([
+            "render".as_ref(),
+            structure.as_os_str(),
+            "-o".as_ref(),
+            picture.as_os_str(),
+        ]);
+        assert_clean_failure(&render, &keywords, None);
+        let edit = run([
+            "edit".as_ref(),
+            structure.as_os_str(),
+            "reciprocal".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+        // The default distance is no parameter of the user's to blame.
+        let line = assert_clean_failure(&edit, &keywords, Some(&out));
+        assert!(!line.contains("reciprocal by"), "{line}");
+        assert!(!out.exists() && !picture.exists());
+        assert_eq!(common::entries(structure), written_before, "analyse wrote");
+    }
 }
