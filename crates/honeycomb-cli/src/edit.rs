@@ -7,7 +7,7 @@ use honeycomb::report::{EditReport, Report};
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -58,6 +58,7 @@ pub fn run(args: Args) -> Result<()> {
         .output
         .clone()
         .ok_or_else(|| Error::Parameter("edit needs -o OUT, a new structure directory".into()))?;
+    refuse_input_as_output(&args.dir, &out)?;
     let (h, conn) = read_structure(&args.dir)?;
     let mut t_junctions = 0;
     let (edited, operation) = match args.operation {
@@ -106,6 +107,22 @@ pub fn run(args: Args) -> Result<()> {
             Report::OMEGA_TOLERANCE_DEG,
             Report::DELTA_TOLERANCE
         )));
+    }
+    Ok(())
+}
+
+/// The edit reads DIR while writing OUT and promises to leave DIR as it is: OUT must be another
+/// directory (one that does not exist yet is).
+fn refuse_input_as_output(dir: &Path, out: &Path) -> Result<()> {
+    if let (Ok(a), Ok(b)) = (dir.canonicalize(), out.canonicalize()) {
+        if a == b {
+            return Err(Error::Parameter(format!(
+                "-o {} is the input directory {}: edit writes a new structure directory and \
+                 leaves its input as it is",
+                out.display(),
+                dir.display()
+            )));
+        }
     }
     Ok(())
 }

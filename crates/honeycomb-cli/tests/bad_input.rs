@@ -448,6 +448,14 @@ fn structure_dir(dir: &TempDir, name: &str, change: &dyn Fn(&mut StructureJson))
     path
 }
 
+/// `honeycomb edit STRUCTURE OPERATION... -o OUT`.
+fn edit(structure: &Path, operation: &[&str], out: &Path) -> std::process::Output {
+    let mut args: Vec<std::ffi::OsString> = vec!["edit".into(), structure.into()];
+    args.extend(operation.iter().map(Into::into));
+    args.extend(["-o".into(), out.into()]);
+    run(&args)
+}
+
 #[test]
 fn structure_with_coincident_vertices() {
     let dir = TempDir::new("structure_with_coincident_vertices");
@@ -475,17 +483,35 @@ fn structure_with_coincident_vertices() {
             picture.as_os_str(),
         ]);
         assert_clean_failure(&render, &keywords, None);
-        let edit = run([
-            "edit".as_ref(),
-            structure.as_os_str(),
-            "reciprocal".as_ref(),
-            "-o".as_ref(),
-            out.as_os_str(),
-        ]);
         // The default distance is no parameter of the user's to blame.
-        let line = assert_clean_failure(&edit, &keywords, Some(&out));
+        let line = assert_clean_failure(
+            &edit(structure, &["reciprocal"], &out),
+            &keywords,
+            Some(&out),
+        );
         assert!(!line.contains("reciprocal by"), "{line}");
         assert!(!out.exists() && !picture.exists());
         assert_eq!(common::entries(structure), written_before, "analyse wrote");
     }
+}
+
+#[test]
+fn edit_into_its_own_directory() {
+    let dir = TempDir::new("edit_into_its_own_directory");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let before = std::fs::read(structure.join("structure.json")).unwrap();
+    let resize = ["resize", "--cell", "0", "--by", "0.1", "-q"];
+    // The same directory spelled another way.
+    let again = structure.join("..").join("structure");
+    for out in [&structure, &again] {
+        let output = edit(&structure, &resize, out);
+        assert_clean_failure(&output, &["-o", "is the input directory"], None);
+        assert_eq!(
+            std::fs::read(structure.join("structure.json")).unwrap(),
+            before
+        );
+    }
+    // A new directory is fine.
+    let output = edit(&structure, &resize, &dir.join("out"));
+    common::assert_success(&output, "resize into a new directory");
 }
