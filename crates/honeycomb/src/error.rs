@@ -39,3 +39,27 @@ fn line_suffix(line: &usize) -> String {
         format!(":{line}")
     }
 }
+
+/// A number as a message shows it: `0.5`, `100`, `1e308`, `1e-320` (`{}` writes out every one
+/// of 1e308's 309 digits).
+pub fn short_number(x: f64) -> String {
+    let debug = format!("{x:?}");
+    match debug.strip_suffix(".0") {
+        Some(whole) => whole.to_string(),
+        None => debug,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::short_number;
+
+    #[test]
+    fn short_numbers() {
+        let shown = [0.5, 100.0, -1.0, 1e308, -1e308, 1e-320, f64::NAN].map(short_number);
+        assert_eq!(
+            shown,
+            ["0.5", "100", "-1", "1e308", "-1e308", "1e-320", "NaN"]
+        );
+    }
+}
