@@ -115,7 +115,7 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::hex_disk;
+    use crate::generate::upright_hex_disk;
 
     /// A structure directory holding `json` as its structure.json, removed on drop.
     struct StructureDir(std::path::PathBuf);
@@ -138,10 +138,7 @@ mod tests {
 
     /// Seven flat hexagons with vertical walls.
     fn flat_structure() -> StructureJson {
-        let base = hex_disk(2.0);
-        let conn = Connectivity::build(&base).unwrap();
-        let axes = vec![Vec3::new(0.0, 0.0, 1.0); base.vertices.len()];
-        Honeycomb::new(base, &conn, axes, 0.3).to_json()
+        upright_hex_disk(2.0, 0.3).0.to_json()
     }
 
     fn read_error(name: &str, json: &StructureJson) -> String {
