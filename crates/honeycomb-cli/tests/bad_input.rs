@@ -515,3 +515,49 @@ fn edit_into_its_own_directory() {
     let output = edit(&structure, &resize, &dir.join("out"));
     common::assert_success(&output, "resize into a new directory");
 }
+
+#[test]
+fn edit_amounts_beyond_the_structure() {
+    let dir = TempDir::new("edit_amounts_beyond_the_structure");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let out = dir.join("out");
+    for (operation, keywords) in [
+        (
+            &["resize", "--cell", "3", "--by", "-1e308"][..],
+            &["cell 3 by -1e308", "turns edge", "between -0.866 and 0.866"][..],
+        ),
+        (
+            &["resize", "--cell", "3", "--by", "0.9"],
+            &["cell 3 by 0.9", "turns edge"],
+        ),
+        (
+            &["subdivide", "--shrink", "1e-320"],
+            &["shrink 1e-320", "between 1e-6 and 1 - 1e-6"],
+        ),
+    ] {
+        let output = edit(&structure, operation, &out);
+        assert_clean_failure(&output, keywords, Some(&out));
+        assert!(!out.exists(), "{operation:?} created {}", out.display());
+    }
+}
+
+#[test]
+fn edit_of_a_structure_that_is_no_honeycomb() {
+    let dir = TempDir::new("edit_of_a_structure_that_is_no_honeycomb");
+    // One node of M' pushed sideways: its three walls twist out of plane.
+    let twisted = structure_dir(&dir, "twisted", &|s| s.offset_vertices[5][0] += 0.3);
+    let out = dir.join("out");
+    for operation in [
+        &["resize", "--cell", "3", "--by", "0.1"][..],
+        &["subdivide"],
+        &["reciprocal"],
+    ] {
+        let output = edit(&twisted, operation, &out);
+        assert_clean_failure(
+            &output,
+            &["structure.json", "not a honeycomb", "delta_max"],
+            Some(&out),
+        );
+        assert!(!out.exists(), "{operation:?} created {}", out.display());
+    }
+}
