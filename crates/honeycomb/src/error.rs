@@ -50,9 +50,16 @@ pub fn short_number(x: f64) -> String {
     }
 }
 
+/// `x` rounded to `digits` significant digits, shown as [`short_number`] shows it: 0.3398,
+/// 339.8, 3.398e-7.
+pub fn rounded(x: f64, digits: usize) -> String {
+    let text = format!("{x:.*e}", digits.max(1) - 1);
+    short_number(text.parse().unwrap_or(x))
+}
+
 #[cfg(test)]
 mod tests {
-    use super::short_number;
+    use super::{rounded, short_number};
 
     #[test]
     fn short_numbers() {
@@ -61,5 +68,7 @@ mod tests {
             shown,
             ["0.5", "100", "-1", "1e308", "-1e308", "1e-320", "NaN"]
         );
+        let shown = [0.339_78, 339.78, 3.3978e-7, 1.0, f64::INFINITY].map(|x| rounded(x, 4));
+        assert_eq!(shown, ["0.3398", "339.8", "3.398e-7", "1", "inf"]);
     }
 }
