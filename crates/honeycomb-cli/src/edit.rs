@@ -1,7 +1,7 @@
 //! `honeycomb edit DIR <operation> -o OUT`: edits that keep a honeycomb a honeycomb.
 
 use crate::progress::Output;
-use honeycomb::edit::{reciprocal, resize_cell, subdivide};
+use honeycomb::edit::{reciprocal, reciprocal_range, resize_cell, subdivide};
 use honeycomb::error::short_number;
 use honeycomb::export::{read_structure, write_structure};
 use honeycomb::report::{EditReport, Report};
@@ -48,7 +48,8 @@ pub enum Operation {
     /// Move walls out and in by turns (paper Fig. 15): every node becomes a triangular cell,
     /// walls end on walls at T-junctions.
     Reciprocal {
-        /// Distance in model units (default 0.1 mean edge lengths).
+        /// Distance in model units (default 0.1 mean edge lengths, or half the largest distance
+        /// the structure takes where that is less).
         #[arg(long, allow_negative_numbers = true)]
         by: Option<f64>,
     },
@@ -90,11 +91,19 @@ pub fn run(args: Args) -> Result<()> {
             )
         }
         Operation::Reciprocal { by } => {
-            let by = by.unwrap_or(0.1 * h.base.mean_edge_length());
+            // The default stays inside the range even where one edge is much shorter than
+            // the rest.
+            let by = match by {
+                Some(by) => by,
+                None => {
+                    (0.1 * h.base.mean_edge_length()).min(0.5 * reciprocal_range(&h, &conn)?.limit)
+                }
+            };
             let r = reciprocal(&h, &conn, by)?;
             t_junctions = r.t_junctions.len();
             let what = format!(
-                "reciprocal by {by}: {} triangular cells",
+                "reciprocal by {}: {} triangular cells",
+                short_number(by),
                 r.honeycomb.base.faces.len() - h.base.faces.len()
             );
             (r.honeycomb, what)

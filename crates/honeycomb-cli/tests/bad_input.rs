@@ -561,3 +561,51 @@ fn edit_of_a_structure_that_is_no_honeycomb() {
         assert!(!out.exists(), "{operation:?} created {}", out.display());
     }
 }
+
+#[test]
+fn reciprocal_distances_beyond_the_structure() {
+    let dir = TempDir::new("reciprocal_distances_beyond_the_structure");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let out = dir.join("out");
+    // Regular hexagons of edge 1: the node triangles meet at 1 / (2 sqrt(3)).
+    for by in ["1e308", "100", "0.29", "1e-300"] {
+        let output = edit(&structure, &["reciprocal", "--by", by], &out);
+        let keywords = [format!("reciprocal by {by}:"), "to below 0.2887".into()];
+        let keywords: Vec<&str> = keywords.iter().map(String::as_str).collect();
+        assert_clean_failure(&output, &keywords, Some(&out));
+        assert!(!out.exists(), "--by {by} created {}", out.display());
+    }
+}
+
+#[test]
+fn reciprocal_default_on_a_structure_with_a_short_edge() {
+    let dir = TempDir::new("reciprocal_default_on_a_structure_with_a_short_edge");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    // The middle cell's sides shrink to 1 - 2 * 0.8 / sqrt(3) = 0.076: 0.1 mean edge lengths
+    // is beyond the reciprocal's range there.
+    let shrunk = dir.join("shrunk");
+    let output = edit(
+        &structure,
+        &["resize", "--cell", "3", "--by", "0.8", "-q"],
+        &shrunk,
+    );
+    common::assert_success(&output, "resize");
+    let (h, conn) = honeycomb::export::read_structure(&shrunk).unwrap();
+    let limit = honeycomb::edit::reciprocal_range(&h, &conn).unwrap().limit;
+    assert!(limit < 0.1 * h.base.mean_edge_length(), "{limit}");
+    let out = dir.join("out");
+    let output = edit(&shrunk, &["reciprocal", "-q"], &out);
+    common::assert_success(&output, "reciprocal with the default distance");
+    let report = common::read_json(&out, "report.json");
+    let operation = report["operation"].as_str().unwrap();
+    let by: f64 = operation["reciprocal by ".len()..]
+        .split(':')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        (by - 0.5 * limit).abs() < 1e-9 * limit,
+        "{operation}, limit {limit}"
+    );
+}

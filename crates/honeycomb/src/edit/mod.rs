@@ -6,7 +6,7 @@ mod resize;
 mod subdivide;
 mod translate;
 
-pub use reciprocal::{reciprocal, Reciprocal};
+pub use reciprocal::{reciprocal, reciprocal_range, Reciprocal, ReciprocalRange};
 pub use resize::resize_cell;
 pub use subdivide::subdivide;
 pub use translate::translate_walls;
