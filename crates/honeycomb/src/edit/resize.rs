@@ -18,14 +18,14 @@ pub fn resize_cell(h: &Honeycomb, conn: &Connectivity, cell: usize, by: f64) -> 
             faces.len()
         ))
     })?;
-    let amount = format!("resize of cell {cell} by {}", short_number(by));
+    let what = format!("resize of cell {cell} by {}", short_number(by));
     if !by.is_finite() {
-        return Err(Error::Parameter(format!("{amount}: not a finite distance")));
+        return Err(Error::Parameter(format!("{what}: not a finite distance")));
     }
     let p = &h.base.vertices;
     let mut lambda = vec![0.0; h.edges.len()];
     for (e, inward) in inward_walls(h, conn, cell, |e| h.wall_normal(e)) {
-        // lambda moves the wall along its stored normal n_e; inward is +-n_e.
+        // A unit amount: lambda moves the wall along its stored normal n_e; inward is +-n_e.
         lambda[e] = inward.dot(h.wall_normal(e));
     }
     // The corners move linearly with the amount: by * unit.
@@ -49,9 +49,8 @@ pub fn resize_cell(h: &Honeycomb, conn: &Connectivity, cell: usize, by: f64) -> 
     if !(grow.0 < by && by < shrink.0) {
         let [a, b] = h.edges[if by > 0.0 { shrink.1 } else { grow.1 }];
         return Err(Error::Parameter(format!(
-            "{amount} turns edge {a}-{b} around: the cell (or its \
-             neighbour) would invert; expected an amount between {:.3} and {:.3} (edge length \
-             there {:.3})",
+            "{what} turns edge {a}-{b} around: the cell (or its neighbour) would invert; \
+             expected an amount between {:.3} and {:.3} (edge length there {:.3})",
             grow.0,
             shrink.0,
             (p[b] - p[a]).norm()
@@ -59,7 +58,7 @@ pub fn resize_cell(h: &Honeycomb, conn: &Connectivity, cell: usize, by: f64) -> 
     }
     let vertices = p.iter().zip(&unit).map(|(&q, &u)| q + u * by).collect();
     let base = PolyMesh::new(vertices, faces.clone());
-    validated(&amount, &base)?;
+    validated(&what, &base)?;
     Ok(Honeycomb::new(base, conn, h.axes.clone(), h.thickness))
 }
 
