@@ -1,13 +1,14 @@
 //! `honeycomb edit DIR <operation> -o OUT`: edits that keep a honeycomb a honeycomb.
 
 use crate::progress::Output;
-use honeycomb::edit::{reciprocal, resize_cell, subdivide};
+use honeycomb::edit::{reciprocal, reciprocal_range, resize_cell, subdivide};
+use honeycomb::error::short_number;
 use honeycomb::export::{read_structure, write_structure};
 use honeycomb::report::{EditReport, Report};
-use honeycomb::structure::measure;
+use honeycomb::structure::{measure, Measures};
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -47,7 +48,8 @@ pub enum Operation {
     /// Move walls out and in by turns (paper Fig. 15): every node becomes a triangular cell,
     /// walls end on walls at T-junctions.
     Reciprocal {
-        /// Distance in model units (default 0.1 mean edge lengths).
+        /// Distance in model units (default 0.1 mean edge lengths, or half the largest distance
+        /// the structure takes where that is less).
         #[arg(long, allow_negative_numbers = true)]
         by: Option<f64>,
     },
@@ -58,39 +60,70 @@ pub fn run(args: Args) -> Result<()> {
         .output
         .clone()
         .ok_or_else(|| Error::Parameter("edit needs -o OUT, a new structure directory".into()))?;
+    refuse_input_as_output(&args.dir, &out)?;
     let (h, conn) = read_structure(&args.dir)?;
+    // Closeness is measured to the structure before the edit.
+    let before = Surface::from_mesh(&h.base)?;
+    // The edits keep a honeycomb a honeycomb; from anything else their result means nothing.
+    let input = measure(&h, &before);
+    if !Report::within_tolerances(&input) {
+        return Err(Error::Parse {
+            path: args.dir.join("structure.json"),
+            line: 0,
+            message: format!(
+                "not a honeycomb: {}; an edit needs one to start from",
+                honeycomb_measures(&input, false)
+            ),
+        });
+    }
     let mut t_junctions = 0;
     let (edited, operation) = match args.operation {
         Operation::Resize { cell, by } => (
             resize_cell(&h, &conn, cell, by)?,
-            format!("resize cell {cell} by {by}"),
+            format!("resize cell {cell} by {}", short_number(by)),
         ),
         Operation::Subdivide { shrink } => {
             let (sub, _) = subdivide(&h, &conn, shrink)?;
             let cells = format!("{} cells -> {}", h.base.faces.len(), sub.base.faces.len());
-            (sub, format!("subdivide with shrink {shrink}: {cells}"))
+            (
+                sub,
+                format!("subdivide with shrink {}: {cells}", short_number(shrink)),
+            )
         }
         Operation::Reciprocal { by } => {
-            let by = by.unwrap_or(0.1 * h.base.mean_edge_length());
+            // The default stays inside the range even where one edge is much shorter than
+            // the rest.
+            let by = match by {
+                Some(by) => by,
+                None => {
+                    (0.1 * h.base.mean_edge_length()).min(0.5 * reciprocal_range(&h, &conn)?.limit)
+                }
+            };
             let r = reciprocal(&h, &conn, by)?;
             t_junctions = r.t_junctions.len();
             let what = format!(
-                "reciprocal by {by}: {} triangular cells",
+                "reciprocal by {}: {} triangular cells",
+                short_number(by),
                 r.honeycomb.base.faces.len() - h.base.faces.len()
             );
             (r.honeycomb, what)
         }
     };
-    // Closeness is measured to the structure before the edit.
-    let before = Surface::from_mesh(&h.base)?;
     let measures = measure(&edited, &before);
     let report = EditReport::new(&edited, measures, operation, t_junctions);
+    // Every check comes before the first file is written: a failed edit leaves no OUT.
+    if !report.honeycomb {
+        return Err(Error::Parameter(format!(
+            "{} gives no honeycomb: {}; nothing written",
+            report.operation,
+            honeycomb_measures(&report.measures, t_junctions > 0)
+        )));
+    }
+    let json =
+        serde_json::to_string_pretty(&report).map_err(|e| Error::Parameter(e.to_string()))?;
     write_structure(&out, &edited, &report)?;
     match Output::from_flags(args.quiet, args.json) {
-        Output::Json => println!(
-            "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| Error::Parameter(e.to_string()))?
-        ),
+        Output::Json => println!("{json}"),
         Output::Human => {
             println!(
                 "{}: omega_max {:.2e} deg, delta_max {:.1e}",
@@ -100,12 +133,39 @@ pub fn run(args: Args) -> Result<()> {
         }
         Output::Quiet => {}
     }
-    if !report.honeycomb {
-        return Err(Error::Solver(format!(
-            "the edited structure is not a honeycomb (tolerance {} deg, {:.0e}); was the input one?",
-            Report::OMEGA_TOLERANCE_DEG,
-            Report::DELTA_TOLERANCE
-        )));
+    Ok(())
+}
+
+/// "omega_max 3.100 deg (tolerance 0.1 deg), delta_max 2.0e-2 (tolerance 1e-3)", or delta
+/// alone where T-junctions make the angles 180/120/60 degrees by construction.
+fn honeycomb_measures(m: &Measures, walls_only: bool) -> String {
+    let delta = format!(
+        "delta_max {:.1e} (tolerance {:.0e})",
+        m.delta_max,
+        Report::DELTA_TOLERANCE
+    );
+    if walls_only {
+        return delta;
+    }
+    format!(
+        "omega_max {:.3} deg (tolerance {} deg), {delta}",
+        m.omega_max_deg,
+        Report::OMEGA_TOLERANCE_DEG
+    )
+}
+
+/// The edit reads DIR while writing OUT and promises to leave DIR as it is: OUT must be another
+/// directory (one that does not exist yet is).
+fn refuse_input_as_output(dir: &Path, out: &Path) -> Result<()> {
+    if let (Ok(a), Ok(b)) = (dir.canonicalize(), out.canonicalize()) {
+        if a == b {
+            return Err(Error::Parameter(format!(
+                "-o {} is the input directory {}: edit writes a new structure directory and \
+                 leaves its input as it is",
+                out.display(),
+                dir.display()
+            )));
+        }
     }
     Ok(())
 }

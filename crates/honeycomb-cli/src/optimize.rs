@@ -2,7 +2,7 @@
 
 use crate::progress::{IterationBar, Output};
 use honeycomb::analysis::{extruded_along_normals, read_directions, shading_report};
-use honeycomb::error::shown;
+use honeycomb::error::short_number;
 use honeycomb::geometry::read_axes;
 use honeycomb::mesh::{
     nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
@@ -215,7 +215,7 @@ impl SolveArgs {
             if !c.is_finite() || c <= 0.0 {
                 return Err(Error::Parameter(format!(
                     "--depth {}: expected a positive length in model units",
-                    shown(c)
+                    short_number(c)
                 )));
             }
         }
@@ -223,7 +223,7 @@ impl SolveArgs {
             if !t.is_finite() || t <= 0.0 {
                 return Err(Error::Parameter(format!(
                     "--thickness {}: expected a positive length in model units",
-                    shown(t)
+                    short_number(t)
                 )));
             }
         }
@@ -231,7 +231,7 @@ impl SolveArgs {
             if !l.is_finite() || l <= 0.0 {
                 return Err(Error::Parameter(format!(
                     "--min-edge {}: expected a positive length in model units",
-                    shown(l)
+                    short_number(l)
                 )));
             }
         }
@@ -248,7 +248,7 @@ impl SolveArgs {
         if !self.eps.is_finite() || !(1e-12..=1e3).contains(&self.eps) {
             return Err(Error::Parameter(format!(
                 "--eps {}: expected a number from 1e-12 to 1e3, typically 1e-3",
-                shown(self.eps)
+                short_number(self.eps)
             )));
         }
         let weights = Weights {

@@ -4,8 +4,11 @@
 mod common;
 
 use common::{assert_clean_failure, run, stdout, TempDir};
+use honeycomb::export::write_structure;
 use honeycomb::generate::hex_disk;
-use honeycomb::mesh::{write_mesh, PolyMesh};
+use honeycomb::geometry::Vec3;
+use honeycomb::mesh::{write_mesh, Connectivity, PolyMesh};
+use honeycomb::structure::{Honeycomb, StructureJson};
 use std::path::{Path, PathBuf};
 
 const S: f64 = 0.866_025_403_784_438_6; // sqrt(3) / 2
@@ -439,7 +442,7 @@ fn lengths_far_beyond_the_cells() {
     optimize_with_fails(
         &dir,
         &["--parallel", "--depth", "1e6"],
-        &["depth 1e6", "mean edge length"],
+        &["depth 1000000", "mean edge length"],
     );
     optimize_with_fails(
         &dir,
@@ -508,5 +511,183 @@ fn cell_points_with_a_variant() {
         &dir,
         &["--cell-points", "--parallel"],
         &["--cell-points", "--parallel"],
+    );
+}
+
+/// `DIR/name`: a structure directory of seven flat hexagons of edge 1 with vertical walls (an
+/// exact honeycomb), its structure.json then changed by `change`.
+fn structure_dir(dir: &TempDir, name: &str, change: &dyn Fn(&mut StructureJson)) -> PathBuf {
+    let path = dir.join(name);
+    let base = hex_disk(2.0);
+    let conn = Connectivity::build(&base).unwrap();
+    let axes = vec![Vec3::new(0.0, 0.0, 1.0); base.vertices.len()];
+    let h = Honeycomb::new(base, &conn, axes, 0.3);
+    write_structure(&path, &h, &serde_json::json!({})).unwrap();
+    let mut json = h.to_json();
+    change(&mut json);
+    let text = serde_json::to_string(&json).unwrap();
+    std::fs::write(path.join("structure.json"), text).unwrap();
+    path
+}
+
+/// `honeycomb edit STRUCTURE OPERATION... -o OUT`.
+fn edit(structure: &Path, operation: &[&str], out: &Path) -> std::process::Output {
+    let mut args: Vec<std::ffi::OsString> = vec!["edit".into(), structure.into()];
+    args.extend(operation.iter().map(Into::into));
+    args.extend(["-o".into(), out.into()]);
+    run(&args)
+}
+
+#[test]
+fn structure_with_coincident_vertices() {
+    let dir = TempDir::new("structure_with_coincident_vertices");
+    let all_same = structure_dir(&dir, "all-same", &|s| {
+        s.vertices.iter_mut().for_each(|p| *p = [1.0, 1.0, 1.0])
+    });
+    let duplicate = structure_dir(&dir, "duplicate", &|s| {
+        let [a, b] = s.edges[0];
+        s.vertices[b] = s.vertices[a];
+    });
+    for structure in [&all_same, &duplicate] {
+        let written_before = common::entries(structure);
+        let out = dir.join("out");
+        let picture = dir.join("picture.svg");
+        let keywords = ["structure.json", "zero-length edge"];
+        assert_clean_failure(
+            &run(["analyse".as_ref(), structure.as_os_str()]),
+            &keywords,
+            None,
+        );
+        let render = run([
+            "render".as_ref(),
+            structure.as_os_str(),
+            "-o".as_ref(),
+            picture.as_os_str(),
+        ]);
+        assert_clean_failure(&render, &keywords, None);
+        // The default distance is no parameter of the user's to blame.
+        let line = assert_clean_failure(
+            &edit(structure, &["reciprocal"], &out),
+            &keywords,
+            Some(&out),
+        );
+        assert!(!line.contains("reciprocal by"), "{line}");
+        assert!(!out.exists() && !picture.exists());
+        assert_eq!(common::entries(structure), written_before, "analyse wrote");
+    }
+}
+
+#[test]
+fn edit_into_its_own_directory() {
+    let dir = TempDir::new("edit_into_its_own_directory");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let before = std::fs::read(structure.join("structure.json")).unwrap();
+    let resize = ["resize", "--cell", "0", "--by", "0.1", "-q"];
+    // The same directory spelled another way.
+    let again = structure.join("..").join("structure");
+    for out in [&structure, &again] {
+        let output = edit(&structure, &resize, out);
+        assert_clean_failure(&output, &["-o", "is the input directory"], None);
+        assert_eq!(
+            std::fs::read(structure.join("structure.json")).unwrap(),
+            before
+        );
+    }
+    // A new directory is fine.
+    let output = edit(&structure, &resize, &dir.join("out"));
+    common::assert_success(&output, "resize into a new directory");
+}
+
+#[test]
+fn edit_amounts_beyond_the_structure() {
+    let dir = TempDir::new("edit_amounts_beyond_the_structure");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let out = dir.join("out");
+    for (operation, keywords) in [
+        (
+            &["resize", "--cell", "3", "--by", "-1e308"][..],
+            &["cell 3 by -1e308", "turns edge", "between -0.866 and 0.866"][..],
+        ),
+        (
+            &["resize", "--cell", "3", "--by", "0.9"],
+            &["cell 3 by 0.9", "turns edge"],
+        ),
+        (
+            &["subdivide", "--shrink", "1e-320"],
+            &["shrink 1e-320", "between 1e-6 and 1 - 1e-6"],
+        ),
+    ] {
+        let output = edit(&structure, operation, &out);
+        assert_clean_failure(&output, keywords, Some(&out));
+        assert!(!out.exists(), "{operation:?} created {}", out.display());
+    }
+}
+
+#[test]
+fn edit_of_a_structure_that_is_no_honeycomb() {
+    let dir = TempDir::new("edit_of_a_structure_that_is_no_honeycomb");
+    // One node of M' pushed sideways: its three walls twist out of plane.
+    let twisted = structure_dir(&dir, "twisted", &|s| s.offset_vertices[5][0] += 0.3);
+    let out = dir.join("out");
+    for operation in [
+        &["resize", "--cell", "3", "--by", "0.1"][..],
+        &["subdivide"],
+        &["reciprocal"],
+    ] {
+        let output = edit(&twisted, operation, &out);
+        assert_clean_failure(
+            &output,
+            &["structure.json", "not a honeycomb", "delta_max"],
+            Some(&out),
+        );
+        assert!(!out.exists(), "{operation:?} created {}", out.display());
+    }
+}
+
+#[test]
+fn reciprocal_distances_beyond_the_structure() {
+    let dir = TempDir::new("reciprocal_distances_beyond_the_structure");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let out = dir.join("out");
+    // Regular hexagons of edge 1: the node triangles meet at 1 / (2 sqrt(3)).
+    for by in ["1e308", "100", "0.29", "1e-300"] {
+        let output = edit(&structure, &["reciprocal", "--by", by], &out);
+        let keywords = [format!("reciprocal by {by}:"), "to below 0.2887".into()];
+        let keywords: Vec<&str> = keywords.iter().map(String::as_str).collect();
+        assert_clean_failure(&output, &keywords, Some(&out));
+        assert!(!out.exists(), "--by {by} created {}", out.display());
+    }
+}
+
+#[test]
+fn reciprocal_default_on_a_structure_with_a_short_edge() {
+    let dir = TempDir::new("reciprocal_default_on_a_structure_with_a_short_edge");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    // The middle cell's sides shrink to 1 - 2 * 0.8 / sqrt(3) = 0.076: 0.1 mean edge lengths
+    // is beyond the reciprocal's range there.
+    let shrunk = dir.join("shrunk");
+    let output = edit(
+        &structure,
+        &["resize", "--cell", "3", "--by", "0.8", "-q"],
+        &shrunk,
+    );
+    common::assert_success(&output, "resize");
+    let (h, conn) = honeycomb::export::read_structure(&shrunk).unwrap();
+    let limit = honeycomb::edit::reciprocal_range(&h, &conn).unwrap().limit;
+    assert!(limit < 0.1 * h.base.mean_edge_length(), "{limit}");
+    let out = dir.join("out");
+    let output = edit(&shrunk, &["reciprocal", "-q"], &out);
+    common::assert_success(&output, "reciprocal with the default distance");
+    let report = common::read_json(&out, "report.json");
+    let operation = report["operation"].as_str().unwrap();
+    let by: f64 = operation["reciprocal by ".len()..]
+        .split(':')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        (by - 0.5 * limit).abs() < 1e-9 * limit,
+        "{operation}, limit {limit}"
     );
 }

@@ -40,27 +40,35 @@ fn line_suffix(line: &usize) -> String {
     }
 }
 
-/// A number as a message shows it: plainly at everyday sizes, in exponent form far from them
-/// (`1e308`, not three hundred digits).
-pub fn shown(x: f64) -> String {
-    if x != 0.0 && x.is_finite() && !(1e-4..1e6).contains(&x.abs()) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
+/// A number as a message shows it: `0.5`, `100`, `1e308`, `1e-320` (`{}` writes out every one
+/// of 1e308's 309 digits).
+pub fn short_number(x: f64) -> String {
+    let debug = format!("{x:?}");
+    match debug.strip_suffix(".0") {
+        Some(whole) => whole.to_string(),
+        None => debug,
     }
+}
+
+/// `x` rounded to `digits` significant digits, shown as [`short_number`] shows it: 0.3398,
+/// 339.8, 3.398e-7.
+pub fn rounded(x: f64, digits: usize) -> String {
+    let text = format!("{x:.*e}", digits.max(1) - 1);
+    short_number(text.parse().unwrap_or(x))
 }
 
 #[cfg(test)]
 mod tests {
-    use super::shown;
+    use super::{rounded, short_number};
 
     #[test]
-    fn numbers_far_from_everyday_sizes_are_shown_with_an_exponent() {
-        assert_eq!(shown(1e308), "1e308");
-        assert_eq!(shown(-2.5e-9), "-2.5e-9");
-        assert_eq!(shown(0.125), "0.125");
-        assert_eq!(shown(-3.0), "-3");
-        assert_eq!(shown(0.0), "0");
-        assert_eq!(shown(f64::NAN), "NaN");
+    fn short_numbers() {
+        let shown = [0.5, 100.0, -1.0, 1e308, -1e308, 1e-320, f64::NAN].map(short_number);
+        assert_eq!(
+            shown,
+            ["0.5", "100", "-1", "1e308", "-1e308", "1e-320", "NaN"]
+        );
+        let shown = [0.339_78, 339.78, 3.3978e-7, 1.0, f64::INFINITY].map(|x| rounded(x, 4));
+        assert_eq!(shown, ["0.3398", "339.8", "3.398e-7", "1", "inf"]);
     }
 }

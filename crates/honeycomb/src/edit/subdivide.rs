@@ -6,22 +6,26 @@
 
 use super::cell_walls::inward_walls;
 use super::translate::axis_plane_shift;
-use crate::error::{Error, Result};
+use super::{validated, FINEST};
+use crate::error::{short_number, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::structure::Honeycomb;
 use std::collections::HashMap;
 
-/// Shrinks every cell to `shrink` times its size (0 < shrink < 1; walls move inwards by
+/// Shrinks every cell to `shrink` times its size (1e-6 to 1 - 1e-6; walls move inwards by
 /// `1 - shrink` times the mean distance of the cell's walls from its centroid).
 pub fn subdivide(
     h: &Honeycomb,
     conn: &Connectivity,
     shrink: f64,
 ) -> Result<(Honeycomb, Connectivity)> {
-    if !(shrink > 0.0 && shrink < 1.0) {
+    let what = format!("subdivide with shrink {}", short_number(shrink));
+    // Near 0 the old cells, near 1 the new ones along the walls, shrink to points.
+    if !(FINEST..=1.0 - FINEST).contains(&shrink) {
         return Err(Error::Parameter(format!(
-            "shrink {shrink}: expected a fraction between 0 and 1 (0.5 gives cells of about one size)"
+            "{what}: expected a fraction between {FINEST:e} and 1 - {FINEST:e} (0.5 gives \
+             cells of about one size)"
         )));
     }
     let faces = &h.base.faces;
@@ -103,7 +107,30 @@ pub fn subdivide(
         ]);
     }
     let base = PolyMesh::new(vertices, new_faces);
-    let conn = Connectivity::build(&base)
-        .map_err(|e| Error::Parameter(format!("subdivision of this honeycomb failed: {e}")))?;
+    let conn = validated(&what, &base)?;
     Ok((Honeycomb::new(base, &conn, axes, h.thickness), conn))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::upright_hex_disk;
+
+    #[test]
+    fn a_shrink_that_leaves_points_is_refused() {
+        let (h, conn) = upright_hex_disk(2.0, 0.3);
+        for shrink in [1e-320, 1e-9, 1.0 - 1e-9, 0.0, 1.0, f64::NAN] {
+            let message = subdivide(&h, &conn, shrink).unwrap_err().to_string();
+            assert!(
+                message.contains(&format!(
+                    "shrink {}: expected a fraction between 1e-6 and 1 - 1e-6",
+                    short_number(shrink)
+                )),
+                "{message}"
+            );
+        }
+        for shrink in [1e-3, 0.5, 0.999] {
+            subdivide(&h, &conn, shrink).unwrap();
+        }
+    }
 }

@@ -4,15 +4,28 @@
 //! an equilateral triangle). Node axes keep their directions; each vertex moves to the closest
 //! point of its moved axis, i.e. by the least-norm solution of `n_ij . dv = lambda_ij`.
 
+use super::validated;
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
-use crate::mesh::Connectivity;
+use crate::mesh::{Connectivity, PolyMesh};
 use crate::structure::Honeycomb;
 
 /// Moves the wall of every edge `e` by `lambda[e]` along its normal `n_e` (as seen from the
 /// edge's first vertex). Fails, naming the nodes, when the walls of a trivalent node would no
 /// longer share an axis.
 pub fn translate_walls(h: &Honeycomb, conn: &Connectivity, lambda: &[f64]) -> Result<Honeycomb> {
+    let shifts = wall_shifts(h, conn, lambda)?;
+    let vertices: Vec<Vec3> = (h.base.vertices.iter().zip(&shifts))
+        .map(|(&p, &d)| p + d)
+        .collect();
+    let base = PolyMesh::new(vertices, h.base.faces.clone());
+    validated("the translation", &base)?;
+    Ok(Honeycomb::new(base, conn, h.axes.clone(), h.thickness))
+}
+
+/// How far each vertex moves when the walls move by `lambda` (see [`translate_walls`]): linear
+/// in `lambda`, so an edit can scale the shifts of a unit move.
+pub(crate) fn wall_shifts(h: &Honeycomb, conn: &Connectivity, lambda: &[f64]) -> Result<Vec<Vec3>> {
     if lambda.len() != h.edges.len() {
         return Err(Error::Parameter(format!(
             "{} wall translations for {} walls",
@@ -56,11 +69,9 @@ pub fn translate_walls(h: &Honeycomb, conn: &Connectivity, lambda: &[f64]) -> Re
             if broken.len() > 5 { ", ..." } else { "" }
         )));
     }
-    let vertices: Vec<Vec3> = (0..h.base.vertices.len())
-        .map(|v| h.base.vertices[v] + axis_plane_shift(h.axes[v], &walls_at(v)))
-        .collect();
-    let base = crate::mesh::PolyMesh::new(vertices, h.base.faces.clone());
-    Ok(Honeycomb::new(base, conn, h.axes.clone(), h.thickness))
+    Ok((0..h.base.vertices.len())
+        .map(|v| axis_plane_shift(h.axes[v], &walls_at(v)))
+        .collect())
 }
 
 /// The least-norm `dv` with `n . dv = lambda` for every wall `(n, lambda)` at a node: it lies
@@ -86,4 +97,32 @@ pub(crate) fn axis_plane_shift(axis: Vec3, walls: &[(Vec3, f64)]) -> Vec3 {
     let c0 = (d * r0 - b * r1) / det;
     let c1 = (a * r1 - b * r0) / det;
     u * c0 + w * c1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::upright_hex_disk;
+
+    /// The middle cell's walls moved inwards by 1e308 (a resize): every node sum holds, but
+    /// the corners' shifts overflow.
+    #[test]
+    fn a_translation_beyond_the_numbers_is_refused() {
+        let (h, conn) = upright_hex_disk(2.0, 0.3);
+        let cell = (0..h.base.faces.len())
+            .find(|&f| h.base.faces[f].iter().all(|&v| conn.valence(v) == 3))
+            .unwrap();
+        let mut lambda = vec![0.0; h.edges.len()];
+        for (e, inward) in
+            super::super::cell_walls::inward_walls(&h, &conn, cell, |e| h.wall_normal(e))
+        {
+            lambda[e] = 1e308 * inward.dot(h.wall_normal(e));
+        }
+        let message = translate_walls(&h, &conn, &lambda).unwrap_err().to_string();
+        assert!(
+            message.contains("the translation leaves no valid structure: vertex"),
+            "{message}"
+        );
+        assert!(message.contains("non-finite coordinate"), "{message}");
+    }
 }

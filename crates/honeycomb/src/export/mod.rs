@@ -4,7 +4,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
-use crate::mesh::Outputs;
+use crate::mesh::{validate_base_mesh, Outputs};
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::structure::{Honeycomb, StructureJson};
 use std::path::Path;
@@ -96,11 +96,13 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
         ));
     }
     let vertices: Vec<Vec3> = s.vertices.iter().map(|p| Vec3::from_slice(p)).collect();
-    if let Some(v) = vertices.iter().position(|p| !p.is_finite()) {
-        return Err(bad(0, format!("vertex {v} is not finite")));
-    }
     let base = PolyMesh::new(vertices, s.faces.clone());
-    let conn = Connectivity::build(&base).map_err(|e| bad(0, e.to_string()))?;
+    // The same checks as optimize's input: coincident or far-flung vertices leave the walls
+    // undefined, and every measure and edit of them would be noise.
+    let conn = validate_base_mesh(&base).map_err(|e| match e {
+        Error::Mesh(message) => Error::Mesh(format!("{}: {message}", path.display())),
+        other => other,
+    })?;
     if conn.edges != s.edges {
         return Err(bad(0, "the edges do not match the faces".into()));
     }
@@ -121,4 +123,71 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
         thickness: s.thickness,
     };
     Ok((honeycomb, conn))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::upright_hex_disk;
+
+    /// A structure directory holding `json` as its structure.json, removed on drop.
+    struct StructureDir(std::path::PathBuf);
+
+    impl StructureDir {
+        fn new(name: &str, json: &StructureJson) -> StructureDir {
+            let dir = std::env::temp_dir()
+                .join(format!("honeycomb-export-{name}-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).unwrap();
+            write_json(&dir.join("structure.json"), json).unwrap();
+            StructureDir(dir)
+        }
+    }
+
+    impl Drop for StructureDir {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
+    /// Seven flat hexagons with vertical walls.
+    fn flat_structure() -> StructureJson {
+        upright_hex_disk(2.0, 0.3).0.to_json()
+    }
+
+    fn read_error(name: &str, json: &StructureJson) -> String {
+        let dir = StructureDir::new(name, json);
+        match read_structure(&dir.0) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("{name}: read as a valid structure"),
+        }
+    }
+
+    #[test]
+    fn a_valid_structure_reads_back() {
+        let json = flat_structure();
+        let dir = StructureDir::new("valid", &json);
+        let (h, conn) = read_structure(&dir.0).unwrap();
+        assert_eq!(h.base.faces, json.faces);
+        assert_eq!(conn.edges, json.edges);
+    }
+
+    #[test]
+    fn coincident_vertices_are_refused_naming_the_file() {
+        let mut json = flat_structure();
+        json.vertices.iter_mut().for_each(|p| *p = [1.0, 1.0, 1.0]);
+        let message = read_error("all-same", &json);
+        assert!(
+            message.contains("structure.json: zero-length edge"),
+            "{message}"
+        );
+
+        let mut json = flat_structure();
+        let [a, b] = json.edges[0];
+        json.vertices[b] = json.vertices[a];
+        let message = read_error("duplicate", &json);
+        assert!(
+            message.contains(&format!("structure.json: zero-length edge {a}-{b}")),
+            "{message}"
+        );
+    }
 }

@@ -24,3 +24,19 @@ pub fn lifted_hex_patch(shape: Shape, vertices: usize) -> (PolyMesh, PolyMesh) {
     let cells_across = (2.4 * d / 0.5).ceil() as usize;
     (base, field.triangulate(cells_across.clamp(32, 160)))
 }
+
+/// `hex_disk(radius)` in z = 0 with every node axis vertical and M' at `thickness` above: an
+/// exact honeycomb (upright planar walls at 120 degrees), the unit tests' smallest subject.
+#[cfg(test)]
+pub(crate) fn upright_hex_disk(
+    radius: f64,
+    thickness: f64,
+) -> (crate::structure::Honeycomb, crate::mesh::Connectivity) {
+    let base = hex_disk(radius);
+    let conn = crate::mesh::Connectivity::build(&base).expect("a hex disk is a valid mesh");
+    let axes = vec![crate::geometry::Vec3::new(0.0, 0.0, 1.0); base.vertices.len()];
+    (
+        crate::structure::Honeycomb::new(base, &conn, axes, thickness),
+        conn,
+    )
+}

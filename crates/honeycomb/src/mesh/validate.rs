@@ -2,7 +2,7 @@
 //! where, and, when there is an obvious one, how to fix it.
 
 use super::{Connectivity, PolyMesh};
-use crate::error::{shown, Error, Result};
+use crate::error::{short_number, Error, Result};
 
 /// How many offending vertices a message lists before summarising the rest.
 const LISTED: usize = 5;
@@ -43,11 +43,11 @@ pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
         .find(|(_, p)| p.to_array().iter().any(|c| c.abs() > MAX_COORDINATE))
     {
         return Err(Error::Mesh(format!(
-            "vertex {v} at ({}, {}, {}) lies beyond {} model units; rescale the mesh",
-            shown(p.x),
-            shown(p.y),
-            shown(p.z),
-            shown(MAX_COORDINATE)
+            "vertex {v} at ({}, {}, {}) lies beyond {MAX_COORDINATE:e} model units; rescale \
+             the mesh",
+            short_number(p.x),
+            short_number(p.y),
+            short_number(p.z)
         )));
     }
     let conn = Connectivity::build(mesh)?;

@@ -26,7 +26,7 @@ use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
     PrescribedAxes,
 };
-use crate::error::{shown, Error, Result};
+use crate::error::{short_number, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::solve::{Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolverOptions};
@@ -105,7 +105,7 @@ fn check_scale(label: &str, length: f64, ratio: f64, edge: f64) -> Result<()> {
         return Err(Error::Parameter(format!(
             "{label} {}: more than {ratio} times the base mesh's mean edge length \
              {edge:.4}; expected a length in the model's units",
-            shown(length)
+            short_number(length)
         )));
     }
     Ok(())
