@@ -239,21 +239,21 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
             }
             Err(e) => return Err(name_file(&args.surface, e)),
         };
-        if output == Output::Human {
-            print_report(&made, output, &args.output.join("initial.obj"))?;
-        }
+        // The options that depend on the mesh are checked before anything is written.
+        solve_options(&args.opts, &made.base, Some(&surface))?;
         std::fs::create_dir_all(&args.output).map_err(|source| Error::Io {
             path: args.output.clone(),
             source,
         })?;
-        // The options that depend on the mesh are checked before anything is written.
-        solve_options(&args.opts, &made.base, Some(&surface))?;
         // Before the solve, so that they are there to inspect whatever it gives.
         let mut outputs = Outputs::new();
         outputs.mesh(&args.output.join("initial.obj"), &made.base)?;
         outputs.mesh(&args.output.join("surface.obj"), &surface)?;
         stage_json(&mut outputs, &args.output.join("init.json"), &made.report)?;
         outputs.commit()?;
+        if output == Output::Human {
+            print_report(&made, output, &args.output.join("initial.obj"))?;
+        }
         let dir = &args.output;
         match optimize_and_write(
             &made.base,

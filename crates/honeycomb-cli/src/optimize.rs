@@ -211,14 +211,6 @@ impl SolveArgs {
                 ))
             })?;
         }
-        if let Some(c) = self.depth {
-            if !c.is_finite() || c <= 0.0 {
-                return Err(Error::Parameter(format!(
-                    "--depth {}: expected a positive length in model units",
-                    short_number(c)
-                )));
-            }
-        }
         if let Some(t) = self.thickness {
             if !t.is_finite() || t <= 0.0 {
                 return Err(Error::Parameter(format!(
