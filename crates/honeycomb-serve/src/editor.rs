@@ -17,9 +17,23 @@ use tokio::sync::{broadcast, mpsc};
 
 pub enum Command {
     /// A parsed message from a page, with the moment it was read.
-    Message(ClientMessage, Instant),
+    Message(ClientMessage, Instant, Page),
     /// A new page: send it the mesh and the current state.
     Hello(mpsc::UnboundedSender<Arc<str>>),
+}
+
+/// The page a message came from: its number (pages number their own gestures) and where its
+/// own replies go (an error is news to that page only).
+pub struct Page {
+    pub number: u64,
+    pub reply: mpsc::UnboundedSender<Arc<str>>,
+}
+
+impl Page {
+    fn tell(&self, message: Value) {
+        // A page that has gone needs no answer.
+        let _ = self.reply.send(Arc::from(message.to_string()));
+    }
 }
 
 pub struct Editor {
@@ -140,8 +154,8 @@ impl Editor {
                         let _ = reply.send(Arc::from(mesh.to_string()));
                         let _ = reply.send(Arc::from(self.state(session, &p).to_string()));
                     }
-                    Command::Message(message, at) => {
-                        if let Some(next) = self.handle(session, ws, message, at, &mut p) {
+                    Command::Message(message, at, page) => {
+                        if let Some(next) = self.handle(session, ws, message, at, page, &mut p) {
                             return next;
                         }
                     }
@@ -172,6 +186,7 @@ impl Editor {
         ws: &Workspace,
         message: ClientMessage,
         at: Instant,
+        page: Page,
         p: &mut Progress,
     ) -> Option<Next> {
         let instant = |p: &mut Progress, stroke| {
@@ -181,7 +196,7 @@ impl Editor {
             p.step_ms = 0.0;
         };
         if let Some((edit, stroke)) = message.edit() {
-            match session.apply(edit, stroke) {
+            match session.apply(edit, stroke.map(|s| gesture(page.number, s))) {
                 Ok(()) => {
                     instant(p, stroke);
                     if !session.solving() {
@@ -190,7 +205,7 @@ impl Editor {
                         self.broadcast(self.state(session, p));
                     }
                 }
-                Err(e) => self.broadcast(error_message(&e.to_string())),
+                Err(e) => page.tell(error_message(&e.to_string())),
             }
             return None;
         }
@@ -205,7 +220,7 @@ impl Editor {
                     }
                 };
                 if !changed {
-                    self.broadcast(error_message("nothing to undo or redo"));
+                    page.tell(error_message("nothing to undo or redo"));
                 }
                 instant(p, None);
                 p.seq += 1;
@@ -215,14 +230,14 @@ impl Editor {
                 Ok(dir) => self.broadcast(json!({
                     "type": "saved", "name": name, "dir": dir.display().to_string()
                 })),
-                Err(e) => self.broadcast(error_message(&format!("save failed: {e}"))),
+                Err(e) => page.tell(error_message(&format!("save failed: {e}"))),
             },
             ClientMessage::Load { name } => {
                 let loaded = save_dir(&self.save_root, &name)
                     .and_then(|dir| Source::Structure(dir).workspace(self.thickness));
                 match loaded {
                     Ok(next) => return Some(Next::Load(Box::new(next), name)),
-                    Err(e) => self.broadcast(error_message(&format!("load failed: {e}"))),
+                    Err(e) => page.tell(error_message(&format!("load failed: {e}"))),
                 }
             }
             // The edits, handled above.
@@ -267,4 +282,11 @@ impl Editor {
         }
         Ok(dir)
     }
+}
+
+/// The session's key for gesture `stroke` of page `page`: pages number their gestures from 1
+/// each, and two pages' gesture 1 must not share an undo step. Pages count up from 0 and
+/// gestures stay far below 2^40 (one a millisecond for 30 years).
+fn gesture(page: u64, stroke: u64) -> u64 {
+    (page << 40) ^ stroke
 }

@@ -92,7 +92,9 @@ pub fn start(source: &Source, options: ServeOptions) -> Result<Server> {
         .set_nonblocking(true)
         .map_err(|e| Error::Parameter(e.to_string()))?;
 
-    let (commands_tx, commands) = std::sync::mpsc::channel();
+    // Bounded: a page that sends faster than the editor works gets "busy" replies instead of
+    // a queue that delays every page and grows without limit.
+    let (commands_tx, commands) = std::sync::mpsc::sync_channel(server::COMMAND_QUEUE);
     let (out, _) = broadcast::channel(16);
     let (ready_tx, ready) = std::sync::mpsc::channel();
     let editor = Editor {

@@ -1,17 +1,21 @@
 //! HTTP and WebSocket: the page's assets at fixed paths and one WebSocket at `/ws`. Each page
-//! gets every update the editor broadcasts; a page that falls behind skips to the newest.
+//! gets every update the editor broadcasts; a page that falls behind is sent the mesh and the
+//! newest state again. Only pages served from this server may open the WebSocket: a browser
+//! lets any site open one to 127.0.0.1, and that site could then edit, save and overwrite.
 
 use crate::assets::{lookup, Asset, MISSING_HINT};
-use crate::editor::Command;
+use crate::editor::{Command, Page};
 use crate::protocol::{error_message, ClientMessage};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
 use axum::extract::State;
-use axum::http::{header, StatusCode, Uri};
+use axum::http::{header, HeaderMap, StatusCode, Uri};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
 use axum::Router;
-use std::sync::mpsc::Sender;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{SyncSender, TrySendError};
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 use std::time::Instant;
 use tokio::sync::{broadcast, mpsc};
 
@@ -19,20 +23,50 @@ use tokio::sync::{broadcast, mpsc};
 /// `protocol::MAX_MESSAGE_BYTES` get an error reply and are dropped.
 const MAX_FRAME_BYTES: usize = 1 << 20;
 
+/// Commands waiting for the editor at most. An undo or a slide costs it about 10 ms (a new
+/// state for every page), so a full queue is well under a second of work.
+pub const COMMAND_QUEUE: usize = 64;
+
 #[derive(Clone)]
 pub struct AppState {
-    pub commands: Arc<Mutex<Sender<Command>>>,
+    pub commands: Arc<Mutex<SyncSender<Command>>>,
     pub out: broadcast::Sender<Arc<str>>,
 }
 
+/// What became of a command handed to the editor.
+enum Sent {
+    Queued,
+    Busy,
+    Gone,
+}
+
 impl AppState {
-    fn send(&self, c: Command) -> bool {
-        self.commands
-            .lock()
-            .map(|s| s.send(c).is_ok())
-            .unwrap_or(false)
+    fn try_send(&self, c: Command) -> Sent {
+        let Ok(sender) = self.commands.lock() else {
+            return Sent::Gone;
+        };
+        match sender.try_send(c) {
+            Ok(()) => Sent::Queued,
+            Err(TrySendError::Full(_)) => Sent::Busy,
+            Err(TrySendError::Disconnected(_)) => Sent::Gone,
+        }
+    }
+
+    /// Asks for the mesh and the current state on `reply`, waiting while the queue is full (a
+    /// page must get them to show anything). False: the editor is gone.
+    async fn hello(&self, reply: &mpsc::UnboundedSender<Arc<str>>) -> bool {
+        loop {
+            match self.try_send(Command::Hello(reply.clone())) {
+                Sent::Queued => return true,
+                Sent::Busy => tokio::time::sleep(Duration::from_millis(5)).await,
+                Sent::Gone => return false,
+            }
+        }
     }
 }
+
+/// Numbers the pages, so that their gestures (each page numbers its own from 1) stay apart.
+static PAGES: AtomicU64 = AtomicU64::new(0);
 
 pub fn router(state: AppState) -> Router {
     Router::new()
@@ -56,17 +90,43 @@ async fn asset(uri: Uri) -> Response {
     }
 }
 
-async fn upgrade(ws: WebSocketUpgrade, State(state): State<AppState>) -> Response {
+async fn upgrade(
+    ws: WebSocketUpgrade,
+    headers: HeaderMap,
+    State(state): State<AppState>,
+) -> Response {
+    if !same_origin(&headers) {
+        return (
+            StatusCode::FORBIDDEN,
+            "the editor's WebSocket is for its own page only",
+        )
+            .into_response();
+    }
     ws.max_message_size(MAX_FRAME_BYTES)
         .max_frame_size(MAX_FRAME_BYTES)
         .on_upgrade(move |socket| page(socket, state))
 }
 
+/// A browser names the page's site in `Origin`; it must be this server (`Host`). Clients that
+/// are not browsers (the tests, the latency bench, scripts) send no `Origin` and are let in.
+fn same_origin(headers: &HeaderMap) -> bool {
+    let Some(origin) = headers.get(header::ORIGIN) else {
+        return true;
+    };
+    let host = headers.get(header::HOST).and_then(|h| h.to_str().ok());
+    let site = origin.to_str().ok().and_then(|o| {
+        o.strip_prefix("http://")
+            .or_else(|| o.strip_prefix("https://"))
+    });
+    matches!((site, host), (Some(site), Some(host)) if site.eq_ignore_ascii_case(host))
+}
+
 async fn page(mut socket: WebSocket, state: AppState) {
+    let page = PAGES.fetch_add(1, Ordering::Relaxed);
     // Subscribe before saying hello, so no update falls between the two.
     let mut updates = state.out.subscribe();
     let (reply, mut replies) = mpsc::unbounded_channel();
-    if !state.send(Command::Hello(reply)) {
+    if !state.hello(&reply).await {
         return;
     }
     loop {
@@ -74,10 +134,21 @@ async fn page(mut socket: WebSocket, state: AppState) {
             incoming = socket.recv() => match incoming {
                 Some(Ok(Message::Text(text))) => match ClientMessage::parse(text.as_str()) {
                     Ok(message) => {
-                        if !state.send(Command::Message(message, Instant::now())) {
-                            return;
+                        let from = Page {
+                            number: page,
+                            reply: reply.clone(),
+                        };
+                        match state.try_send(Command::Message(message, Instant::now(), from)) {
+                            Sent::Queued => continue,
+                            Sent::Busy => Arc::from(
+                                error_message(
+                                    "the editor is busy: message dropped (send fewer, or wait \
+                                     for the updates)",
+                                )
+                                .to_string(),
+                            ),
+                            Sent::Gone => return,
                         }
-                        continue;
                     }
                     Err(e) => Arc::from(error_message(&e).to_string()),
                 },
@@ -93,8 +164,14 @@ async fn page(mut socket: WebSocket, state: AppState) {
             },
             u = updates.recv() => match u {
                 Ok(text) => text,
-                // Fell behind: the skipped updates are stale anyway.
-                Err(broadcast::error::RecvError::Lagged(_)) => continue,
+                // Fell behind: the skipped states are stale anyway, but a skipped mesh (another
+                // page loaded a save) would leave this page's states on the wrong mesh.
+                Err(broadcast::error::RecvError::Lagged(_)) => {
+                    if !state.hello(&reply).await {
+                        return;
+                    }
+                    continue;
+                }
                 Err(broadcast::error::RecvError::Closed) => return,
             },
         };

@@ -277,3 +277,78 @@ fn a_design_surface_gets_a_hex_mesh_first() {
     .is_err());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The status code of a WebSocket handshake to `/ws` with `origin` (none: a client that is not
+/// a browser).
+fn handshake(server: &Server, origin: Option<&str>) -> u16 {
+    let mut s = TcpStream::connect(server.addr).unwrap();
+    let origin = origin.map_or(String::new(), |o| format!("Origin: {o}\r\n"));
+    write!(
+        s,
+        "GET /ws HTTP/1.1\r\nHost: {}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\
+         Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n{origin}\r\n",
+        server.addr
+    )
+    .unwrap();
+    let mut head = [0u8; 12];
+    s.read_exact(&mut head).unwrap();
+    String::from_utf8_lossy(&head[9..12]).parse().unwrap()
+}
+
+#[test]
+fn only_its_own_page_may_open_the_websocket() {
+    // A browser lets any site open a WebSocket to 127.0.0.1; that site could edit and
+    // overwrite saves. The page itself comes from the server's own address.
+    let (server, _) = server("origin");
+    assert_eq!(handshake(&server, Some("https://evil.example")), 403);
+    assert_eq!(handshake(&server, Some("null")), 403);
+    let own = format!("http://{}", server.addr);
+    assert_eq!(handshake(&server, Some(&own)), 101);
+    assert_eq!(handshake(&server, None), 101);
+    server.stop();
+}
+
+#[test]
+fn two_pages_gestures_are_two_undo_steps() {
+    // Each page numbers its gestures from 1: page B's gesture 1 is not page A's.
+    let (server, _) = server("two-pages");
+    let (mut a, _, first) = connect(&server);
+    let (mut b, _, _) = connect(&server);
+    let z = |s: &Value, v: usize| s["base"][3 * v + 2].as_f64().unwrap();
+    let moved = |s: &Value, v: usize| (z(s, v) - z(&first, v)).abs() > 1e-6;
+    a.send(&json!({"type": "slide", "vertex": 0, "distance": 0.1, "stroke": 1}))
+        .unwrap();
+    a.until("state", |s| moved(s, 0)).unwrap();
+    b.send(&json!({"type": "slide", "vertex": 5, "distance": 0.1, "stroke": 1}))
+        .unwrap();
+    let both = b.until("state", |s| moved(s, 5)).unwrap();
+    assert!(moved(&both, 0), "B's gesture undid A's");
+    b.send(&json!({"type": "undo"})).unwrap();
+    let undone = b.until("state", |s| !moved(s, 5)).unwrap();
+    assert!(moved(&undone, 0), "one undo took both pages' gestures");
+    assert_eq!(undone["can_undo"], true);
+    server.stop();
+}
+
+#[test]
+fn a_flood_of_messages_is_turned_away_not_queued() {
+    let (server, _) = server("flood");
+    let (mut a, _, _) = connect(&server);
+    for _ in 0..5000 {
+        a.send(&json!({"type": "undo"})).unwrap();
+    }
+    // Among the replies ("nothing to undo or redo" to the undos that got in), a busy one.
+    let busy = |m: &Value| {
+        m["message"]
+            .as_str()
+            .is_some_and(|t| t.contains("the editor is busy"))
+    };
+    while !busy(&a.receive().unwrap()) {}
+    // Another page still gets in, and the editor still edits.
+    let (mut c, _, first) = connect(&server);
+    c.send(&json!({"type": "slide", "vertex": 3, "distance": 0.1, "stroke": 1}))
+        .unwrap();
+    c.until("state", |s| s["base"][11] != first["base"][11])
+        .unwrap();
+    server.stop();
+}

@@ -2,10 +2,11 @@
 //! `structure.json`, `report.json` (and `quads.obj` for a quad-capped honeycomb). Every file is written to a temporary name and renamed, so a
 //! reader never sees a half-written file.
 
-use crate::error::{Error, Result};
+use crate::error::{short_number, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, Outputs};
 use crate::mesh::{Connectivity, PolyMesh};
+use crate::optimize::MAX_LENGTH;
 use crate::structure::{Honeycomb, StructureJson};
 use std::path::Path;
 
@@ -114,6 +115,29 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
     if let Some(v) = offset.iter().position(|p| !p.is_finite()) {
         return Err(bad(0, format!("offset vertex {v} is not finite")));
     }
+    // At most as deep as optimize builds: beyond that every wall's measures are noise (and
+    // their squares overflow).
+    let edge = base.mean_edge_length();
+    let deepest = MAX_LENGTH * edge;
+    if s.thickness > deepest {
+        return Err(bad(
+            0,
+            format!(
+                "thickness {}: more than {MAX_LENGTH} mean edge lengths ({edge:.4})",
+                short_number(s.thickness)
+            ),
+        ));
+    }
+    let too_deep = |(&o, &p): (&Vec3, &Vec3)| (o - p).norm() > deepest;
+    if let Some(v) = offset.iter().zip(&base.vertices).position(too_deep) {
+        return Err(bad(
+            0,
+            format!(
+                "offset vertex {v} lies more than {MAX_LENGTH} mean edge lengths ({edge:.4}) \
+                 from its vertex"
+            ),
+        ));
+    }
     // M' as written (its depth may vary, as for parallel meshes), with the written axes.
     let honeycomb = Honeycomb {
         offset: PolyMesh::new(offset, base.faces.clone()),
@@ -187,6 +211,25 @@ mod tests {
         let message = read_error("duplicate", &json);
         assert!(
             message.contains(&format!("structure.json: zero-length edge {a}-{b}")),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn a_wall_deeper_than_optimize_builds_is_refused() {
+        // The editor's states and saves of such a structure held inf and null.
+        let mut json = flat_structure();
+        json.offset_vertices[3][2] = 1e160;
+        let message = read_error("deep-offset", &json);
+        assert!(
+            message.contains("offset vertex 3 lies more than 1000 mean edge lengths"),
+            "{message}"
+        );
+        let mut json = flat_structure();
+        json.thickness = 1e6;
+        let message = read_error("deep-thickness", &json);
+        assert!(
+            message.contains("thickness 1000000: more than 1000"),
             "{message}"
         );
     }

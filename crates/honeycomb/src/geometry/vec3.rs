@@ -52,8 +52,15 @@ impl Vec3 {
     /// The unit vector in this direction, or zero for the zero vector.
     pub fn normalized(self) -> Vec3 {
         let n = self.norm();
-        if n > 0.0 {
-            self / n
+        if n > 0.0 && n.is_finite() {
+            return self / n;
+        }
+        // The squared norm of a vector longer than 1e154 overflows: scaled down first, it
+        // still has its direction.
+        let largest = self.x.abs().max(self.y.abs()).max(self.z.abs());
+        if n > 0.0 && largest.is_finite() {
+            let scaled = self / largest;
+            scaled / scaled.norm()
         } else {
             Vec3::ZERO
         }
@@ -145,5 +152,23 @@ impl Index<usize> for Vec3 {
             2 => &self.z,
             _ => panic!("Vec3 index {i} out of range"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Vec3;
+
+    #[test]
+    fn a_very_long_vector_keeps_its_direction() {
+        assert_eq!(
+            Vec3::new(1e155, 0.0, 0.0).normalized(),
+            Vec3::new(1.0, 0.0, 0.0)
+        );
+        let d = Vec3::new(3e200, -4e200, 0.0).normalized();
+        assert!((d - Vec3::new(0.6, -0.8, 0.0)).norm() < 1e-15, "{d:?}");
+        assert_eq!(Vec3::ZERO.normalized(), Vec3::ZERO);
+        assert_eq!(Vec3::new(f64::INFINITY, 0.0, 0.0).normalized(), Vec3::ZERO);
+        assert_eq!(Vec3::new(f64::NAN, 0.0, 0.0).normalized(), Vec3::ZERO);
     }
 }

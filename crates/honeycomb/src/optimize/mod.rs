@@ -94,7 +94,7 @@ pub fn check_thickness(t: f64) -> Result<()> {
 
 /// Thickness and depth beyond this many mean edge lengths are refused: no structure is that
 /// deep, and the solve would lose the cells' scale in roundoff.
-const MAX_LENGTH: f64 = 1e3;
+pub(crate) const MAX_LENGTH: f64 = 1e3;
 /// A minimum edge length beyond this many mean edge lengths would have every edge grow as
 /// much, which is a different mesh, not an optimized one.
 const MAX_MIN_EDGE: f64 = 10.0;
