@@ -116,6 +116,7 @@ pub fn start(source: &Source, options: ServeOptions) -> Result<Server> {
     let state = AppState {
         commands: Arc::new(Mutex::new(commands_tx)),
         out,
+        loopback_only: options.host.is_loopback(),
     };
     let (stop_tx, stop_rx) = oneshot::channel::<()>();
     let runtime = tokio::runtime::Builder::new_multi_thread()

@@ -31,6 +31,9 @@ pub const COMMAND_QUEUE: usize = 64;
 pub struct AppState {
     pub commands: Arc<Mutex<SyncSender<Command>>>,
     pub out: broadcast::Sender<Arc<str>>,
+    /// Listening on 127.0.0.1 only: the page must then also be addressed by a loopback name
+    /// (a site whose own name resolves to 127.0.0.1 would otherwise pass as same-origin).
+    pub loopback_only: bool,
 }
 
 /// What became of a command handed to the editor.
@@ -95,7 +98,7 @@ async fn upgrade(
     headers: HeaderMap,
     State(state): State<AppState>,
 ) -> Response {
-    if !same_origin(&headers) {
+    if !same_origin(&headers, state.loopback_only) {
         return (
             StatusCode::FORBIDDEN,
             "the editor's WebSocket is for its own page only",
@@ -107,9 +110,10 @@ async fn upgrade(
         .on_upgrade(move |socket| page(socket, state))
 }
 
-/// A browser names the page's site in `Origin`; it must be this server (`Host`). Clients that
-/// are not browsers (the tests, the latency bench, scripts) send no `Origin` and are let in.
-fn same_origin(headers: &HeaderMap) -> bool {
+/// A browser names the page's site in `Origin`; it must be this server (`Host`), and on a
+/// loopback server a loopback name. Clients that are not browsers (the tests, the latency
+/// bench, scripts) send no `Origin` and are let in.
+fn same_origin(headers: &HeaderMap, loopback_only: bool) -> bool {
     let Some(origin) = headers.get(header::ORIGIN) else {
         return true;
     };
@@ -118,7 +122,14 @@ fn same_origin(headers: &HeaderMap) -> bool {
         o.strip_prefix("http://")
             .or_else(|| o.strip_prefix("https://"))
     });
-    matches!((site, host), (Some(site), Some(host)) if site.eq_ignore_ascii_case(host))
+    let (Some(site), Some(host)) = (site, host) else {
+        return false;
+    };
+    let name = host.rsplit_once(':').map_or(host, |(name, _port)| name);
+    let loopback = ["127.0.0.1", "localhost", "[::1]"]
+        .iter()
+        .any(|n| name.eq_ignore_ascii_case(n));
+    site.eq_ignore_ascii_case(host) && (loopback || !loopback_only)
 }
 
 async fn page(mut socket: WebSocket, state: AppState) {

@@ -278,16 +278,15 @@ fn a_design_surface_gets_a_hex_mesh_first() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// The status code of a WebSocket handshake to `/ws` with `origin` (none: a client that is not
-/// a browser).
-fn handshake(server: &Server, origin: Option<&str>) -> u16 {
+/// The status code of a WebSocket handshake to `/ws` with `host` and `origin` (none: a client
+/// that is not a browser).
+fn handshake(server: &Server, host: &str, origin: Option<&str>) -> u16 {
     let mut s = TcpStream::connect(server.addr).unwrap();
     let origin = origin.map_or(String::new(), |o| format!("Origin: {o}\r\n"));
     write!(
         s,
-        "GET /ws HTTP/1.1\r\nHost: {}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\
-         Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n{origin}\r\n",
-        server.addr
+        "GET /ws HTTP/1.1\r\nHost: {host}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\
+         Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n{origin}\r\n"
     )
     .unwrap();
     let mut head = [0u8; 12];
@@ -300,11 +299,27 @@ fn only_its_own_page_may_open_the_websocket() {
     // A browser lets any site open a WebSocket to 127.0.0.1; that site could edit and
     // overwrite saves. The page itself comes from the server's own address.
     let (server, _) = server("origin");
-    assert_eq!(handshake(&server, Some("https://evil.example")), 403);
-    assert_eq!(handshake(&server, Some("null")), 403);
-    let own = format!("http://{}", server.addr);
-    assert_eq!(handshake(&server, Some(&own)), 101);
-    assert_eq!(handshake(&server, None), 101);
+    let own = server.addr.to_string();
+    assert_eq!(handshake(&server, &own, Some("https://evil.example")), 403);
+    assert_eq!(handshake(&server, &own, Some("null")), 403);
+    assert_eq!(
+        handshake(&server, &own, Some(&format!("http://{own}"))),
+        101
+    );
+    assert_eq!(handshake(&server, &own, None), 101);
+    let port = server.addr.port();
+    let local = format!("localhost:{port}");
+    assert_eq!(
+        handshake(&server, &local, Some(&format!("http://{local}"))),
+        101
+    );
+    // A site whose name resolves to 127.0.0.1 (DNS rebinding) is the same origin as itself,
+    // but not a loopback name.
+    let rebound = format!("evil.example:{port}");
+    assert_eq!(
+        handshake(&server, &rebound, Some(&format!("http://{rebound}"))),
+        403
+    );
     server.stop();
 }
 
