@@ -1,6 +1,6 @@
 //! `honeycomb demo`: the first success of a new user, no input file needed.
 
-use crate::optimize::{optimize_and_write, BrokenCells, SolveArgs};
+use crate::optimize::{optimize_and_write, solve_options, BrokenCells, SolveArgs};
 use honeycomb::export::write_json;
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::mesh::write_mesh;
@@ -36,10 +36,12 @@ pub fn run(args: Args) -> Result<()> {
         )));
     }
     let (base, surface) = lifted_hex_patch(args.shape, args.vertices);
+    let prepared = solve_options(&args.opts, &base, Some(&surface))?;
     optimize_and_write(
         &base,
         Some(&surface),
         &args.opts,
+        prepared,
         &args.output,
         BrokenCells::Keep,
     )?;

@@ -240,7 +240,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
             Err(e) => return Err(name_file(&args.surface, e)),
         };
         // The options that depend on the mesh are checked before anything is written.
-        solve_options(&args.opts, &made.base, Some(&surface))?;
+        let prepared = solve_options(&args.opts, &made.base, Some(&surface))?;
         std::fs::create_dir_all(&args.output).map_err(|source| Error::Io {
             path: args.output.clone(),
             source,
@@ -259,6 +259,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
             &made.base,
             Some(&surface),
             &args.opts,
+            prepared,
             dir,
             BrokenCells::Drop,
         ) {

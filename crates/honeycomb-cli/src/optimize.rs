@@ -388,13 +388,19 @@ pub enum BrokenCells {
     Drop,
 }
 
-/// The solve's options for `base`, every one checked (against the mesh too), and the sun
-/// path (`--sun-path`, empty without it).
+/// What a solve of one base mesh runs with: its options, every one checked (against the mesh
+/// too), and the sun path (`--sun-path`, empty without it).
+pub struct Prepared {
+    options: OptimizeOptions,
+    sun_path: Vec<Vec3>,
+}
+
+/// The solve of `base` prepared from the arguments: done once, before anything is written.
 pub fn solve_options(
     args: &SolveArgs,
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
-) -> Result<(OptimizeOptions, Vec<Vec3>)> {
+) -> Result<Prepared> {
     let mut options = args.options()?;
     args.add_axes(&mut options, base, surface)?;
     options.validate(base)?;
@@ -402,7 +408,7 @@ pub fn solve_options(
         Some(path) => read_directions(path)?,
         None => Vec::new(),
     };
-    Ok((options, sun_path))
+    Ok(Prepared { options, sun_path })
 }
 
 /// Optimizes, measures, writes the structure directory and prints the result.
@@ -410,10 +416,10 @@ pub fn optimize_and_write(
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
     args: &SolveArgs,
+    prepared: Prepared,
     dir: &Path,
     broken: BrokenCells,
 ) -> Result<(Report, Option<PolyMesh>)> {
-    let (options, sun_path) = solve_options(args, base, surface)?;
     // Before the solve, so that an unusable -o fails at once, not after a long run.
     if dir.exists() && !dir.is_dir() {
         return Err(Error::Parameter(format!(
@@ -426,6 +432,7 @@ pub fn optimize_and_write(
         path: dir.to_path_buf(),
         source,
     })?;
+    let Prepared { options, sun_path } = prepared;
     let result = solve_and_write(base, surface, args, dir, broken, options, &sun_path);
     if result.is_err() && created {
         // A directory made for outputs that never came (a failure before any was written);
@@ -610,10 +617,12 @@ pub fn run(args: Args) -> Result<()> {
         }
         None => None,
     };
+    let prepared = solve_options(&args.opts, &base, surface.as_ref())?;
     optimize_and_write(
         &base,
         surface.as_ref(),
         &args.opts,
+        prepared,
         &args.output,
         BrokenCells::Keep,
     )
