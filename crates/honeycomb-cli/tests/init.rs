@@ -283,18 +283,13 @@ fn bad_surfaces_and_options_are_named() {
         }
     }
     // A report that cannot be written takes the mesh with it: both or neither.
-    let out_dir = tmp.join("out");
-    let out = run([
-        "init",
-        surface.to_str().unwrap(),
-        "--cells",
-        "100",
-        "-o",
-        out_dir.join("base.obj").to_str().unwrap(),
-        "--report",
-        tmp.join("nowhere/init.json").to_str().unwrap(),
-    ]);
-    assert_clean_failure(&out, &["nowhere/init.json"], Some(&out_dir));
+    let nowhere = tmp.join("nowhere/init.json");
+    init_fails(
+        &tmp,
+        &surface,
+        &["--cells", "100", "--report", nowhere.to_str().unwrap()],
+        &["nowhere/init.json"],
+    );
     // An output format nobody reads.
     let out = run([
         "init",

@@ -65,16 +65,14 @@ pub fn resize_cell(h: &Honeycomb, conn: &Connectivity, cell: usize, by: f64) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::upright_hex_disk;
+    use crate::generate::{inner_cell, upright_hex_disk};
 
     /// The middle hexagon of a disk of regular hexagons of edge 1: its sides vanish when its
     /// walls move in by sqrt(3)/2, the edges leaving its corners when they move out as far.
     #[test]
     fn the_range_is_where_no_edge_turns_around() {
         let (h, conn) = upright_hex_disk(2.0, 0.3);
-        let middle = (0..h.base.faces.len())
-            .find(|&f| h.base.faces[f].iter().all(|&v| conn.valence(v) == 3))
-            .unwrap();
+        let middle = inner_cell(&h, &conn);
         let limit = 3f64.sqrt() / 2.0;
         for by in [0.99 * limit, -0.99 * limit] {
             resize_cell(&h, &conn, middle, by).unwrap();

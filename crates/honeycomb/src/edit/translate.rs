@@ -102,16 +102,14 @@ pub(crate) fn axis_plane_shift(axis: Vec3, walls: &[(Vec3, f64)]) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::upright_hex_disk;
+    use crate::generate::{inner_cell, upright_hex_disk};
 
     /// The middle cell's walls moved inwards by 1e308 (a resize): every node sum holds, but
     /// the corners' shifts overflow.
     #[test]
     fn a_translation_beyond_the_numbers_is_refused() {
         let (h, conn) = upright_hex_disk(2.0, 0.3);
-        let cell = (0..h.base.faces.len())
-            .find(|&f| h.base.faces[f].iter().all(|&v| conn.valence(v) == 3))
-            .unwrap();
+        let cell = inner_cell(&h, &conn);
         let mut lambda = vec![0.0; h.edges.len()];
         for (e, inward) in
             super::super::cell_walls::inward_walls(&h, &conn, cell, |e| h.wall_normal(e))

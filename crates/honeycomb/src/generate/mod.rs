@@ -40,3 +40,14 @@ pub(crate) fn upright_hex_disk(
         conn,
     )
 }
+
+/// The first cell of `h` with no corner on the boundary (the middle one of a small disk).
+#[cfg(test)]
+pub(crate) fn inner_cell(
+    h: &crate::structure::Honeycomb,
+    conn: &crate::mesh::Connectivity,
+) -> usize {
+    (0..h.base.faces.len())
+        .find(|&f| h.base.faces[f].iter().all(|&v| conn.valence(v) == 3))
+        .expect("a cell with no corner on the boundary")
+}
