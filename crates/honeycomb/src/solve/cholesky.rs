@@ -1,8 +1,10 @@
 //! Sparse Cholesky on a fixed pattern: the symbolic analysis (fill-reducing ordering, elimination
 //! structure) is done once, every later factorization is numeric only.
 
+use super::dissection::split_in_halves;
 use super::normal_matrix::NormalMatrix;
-use super::ordering::block_order;
+use super::ordering::{block_graph, block_order, DISSECTION_MIN_BLOCKS};
+use super::split::SplitCholesky;
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -15,13 +17,16 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
-pub struct Cholesky {
-    symbolic: SymbolicCholesky<usize>,
-    factor: Vec<f64>,
-    factor_scratch: MemBuffer,
-    solve_scratch: MemBuffer,
-    has_factor: bool,
+/// The factorization of a system: whole, or (large systems with positions, two threads) in
+/// two halves and their separator.
+pub enum Cholesky {
+    Whole(WholeCholesky),
+    Split(SplitCholesky),
 }
+
+/// From this many blocks on, a system whose blocks have positions is factored in two halves
+/// on two threads (where the process may use two: `taskset -c 0` measures the whole factor).
+const SPLIT_MIN_BLOCKS: usize = 1000;
 
 impl Cholesky {
     /// Symbolic analysis; with `block > 1` (unknowns in blocks of that many consecutive
@@ -32,6 +37,71 @@ impl Cholesky {
         block: usize,
         positions: Option<&[Option<Vec3>]>,
     ) -> Result<Cholesky> {
+        let nb = matrix.n / block.max(1);
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        match positions {
+            Some(p)
+                if threads >= 2
+                    && block > 1
+                    && matrix.n.is_multiple_of(block)
+                    && nb >= SPLIT_MIN_BLOCKS
+                    && p.len() == nb =>
+            {
+                let graph = block_graph(matrix, block);
+                let [a, b, s] = split_in_halves(&graph, p, DISSECTION_MIN_BLOCKS)?;
+                Ok(Cholesky::Split(SplitCholesky::analyse(
+                    matrix,
+                    block,
+                    [&a, &b],
+                    &s,
+                )?))
+            }
+            _ => Ok(Cholesky::Whole(WholeCholesky::analyse(
+                matrix, block, positions,
+            )?)),
+        }
+    }
+
+    /// Non-zeros of the factor.
+    pub fn factor_nnz(&self) -> usize {
+        match self {
+            Cholesky::Whole(c) => c.factor_nnz(),
+            Cholesky::Split(c) => c.factor_nnz(),
+        }
+    }
+
+    /// Numeric factorization of the matrix's current values.
+    pub fn factorize(&mut self, matrix: &NormalMatrix) -> Result<()> {
+        match self {
+            Cholesky::Whole(c) => c.factorize(matrix),
+            Cholesky::Split(c) => c.factorize(matrix),
+        }
+    }
+
+    /// Solves `A x = b` in place with the last factorization.
+    pub fn solve_in_place(&mut self, b: &mut [f64]) {
+        match self {
+            Cholesky::Whole(c) => c.solve_in_place(b),
+            Cholesky::Split(c) => c.solve_in_place(b),
+        }
+    }
+}
+
+/// One sparse factor of the whole system.
+pub struct WholeCholesky {
+    symbolic: SymbolicCholesky<usize>,
+    factor: Vec<f64>,
+    factor_scratch: MemBuffer,
+    solve_scratch: MemBuffer,
+    has_factor: bool,
+}
+
+impl WholeCholesky {
+    pub(super) fn analyse(
+        matrix: &NormalMatrix,
+        block: usize,
+        positions: Option<&[Option<Vec3>]>,
+    ) -> Result<WholeCholesky> {
         let pattern = pattern_of(matrix);
         let blocked = (block > 1 && matrix.n.is_multiple_of(block))
             .then(|| block_order(matrix, block, positions))
@@ -52,7 +122,7 @@ impl Cholesky {
         );
         let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
         let factor = vec![0.0; symbolic.len_val()];
-        Ok(Cholesky {
+        Ok(WholeCholesky {
             symbolic,
             factor,
             factor_scratch,

@@ -57,6 +57,20 @@ fn dissect(
     if piece.len() <= LEAF_BLOCKS {
         return minimum_degree(piece, graph, scratch, order);
     }
+    let [low, high, separator] = cut(piece, graph, positions, scratch);
+    dissect(&low, graph, positions, scratch, order)?;
+    dissect(&high, graph, positions, scratch, order)?;
+    minimum_degree(&separator, graph, scratch, order)
+}
+
+/// Cuts a piece in two halves across its longest extent: `[low, high, separator]`, where no
+/// block of `low` is coupled to one of `high`.
+fn cut(
+    piece: &[usize],
+    graph: &BlockGraph,
+    positions: &[Vec3],
+    scratch: &mut Scratch,
+) -> [Vec<usize>; 3] {
     let axis = principal_axis(piece, positions);
     let mut sorted = piece.to_vec();
     sorted.sort_unstable_by(|&a, &b| positions[a].dot(axis).total_cmp(&positions[b].dot(axis)));
@@ -94,9 +108,37 @@ fn dissect(
     for &b in &separator {
         scratch.side[b] = Side::Out;
     }
-    dissect(&low_rest, graph, positions, scratch, order)?;
-    dissect(&high_rest, graph, positions, scratch, order)?;
-    minimum_degree(&separator, graph, scratch, order)
+    [low_rest, high_rest, separator]
+}
+
+/// The blocks cut once into two halves that share no coupling and the separator between
+/// them, each in a fill-reducing order of its own: minimum degree for a half of fewer than
+/// `dissect_from` blocks, nested dissection for a larger one. Two halves can then be factored
+/// at the same time.
+pub fn split_in_halves(
+    graph: &BlockGraph,
+    positions: &[Option<Vec3>],
+    dissect_from: usize,
+) -> Result<[Vec<usize>; 3]> {
+    let nb = graph.adjacency.len();
+    let positions = complete_positions(graph, positions);
+    let mut scratch = Scratch {
+        side: vec![Side::Out; nb],
+        local: vec![usize::MAX; nb],
+    };
+    let all: Vec<usize> = (0..nb).collect();
+    let pieces = cut(&all, graph, &positions, &mut scratch);
+    let [low, high, separator] = &pieces;
+    let mut ordered: [Vec<usize>; 3] = Default::default();
+    for (half, order) in [low, high].into_iter().zip(&mut ordered) {
+        if half.len() >= dissect_from {
+            dissect(half, graph, &positions, &mut scratch, order)?;
+        } else {
+            minimum_degree(half, graph, &mut scratch, order)?;
+        }
+    }
+    minimum_degree(separator, graph, &mut scratch, &mut ordered[2])?;
+    Ok(ordered)
 }
 
 /// The fewest blocks that cut every coupling between the two rows along the cut: a minimum

@@ -7,6 +7,7 @@ mod dissection;
 mod normal_matrix;
 mod ordering;
 mod solver;
+mod split;
 mod substitution;
 
 pub use constraint::{jacobian_fd_error, Constraint, Role};
