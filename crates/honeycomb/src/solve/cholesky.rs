@@ -20,8 +20,8 @@ use faer::{Conj, MatMut, Par, Side};
 /// The factorization of a system: whole, or (large systems with positions, two threads) in
 /// two halves and their separator.
 pub enum Cholesky {
-    Whole(WholeCholesky),
-    Split(SplitCholesky),
+    Whole(Box<WholeCholesky>),
+    Split(Box<SplitCholesky>),
 }
 
 /// From this many blocks on, a system whose blocks have positions is factored in two halves
@@ -49,16 +49,16 @@ impl Cholesky {
             {
                 let graph = block_graph(matrix, block);
                 let [a, b, s] = split_in_halves(&graph, p, DISSECTION_MIN_BLOCKS)?;
-                Ok(Cholesky::Split(SplitCholesky::analyse(
+                Ok(Cholesky::Split(Box::new(SplitCholesky::analyse(
                     matrix,
                     block,
                     [&a, &b],
                     &s,
-                )?))
+                )?)))
             }
-            _ => Ok(Cholesky::Whole(WholeCholesky::analyse(
+            _ => Ok(Cholesky::Whole(Box::new(WholeCholesky::analyse(
                 matrix, block, positions,
-            )?)),
+            )?))),
         }
     }
 

@@ -425,10 +425,10 @@ mod tests {
                 }
             }
         }
-        for j in 0..n {
+        for (j, sum) in row_sums.iter().enumerate() {
             let k = matrix.col_ptr[j + 1] - 1;
             assert_eq!(matrix.row_idx[k], j, "the diagonal closes each column");
-            matrix.values[k] = row_sums[j] + 1e-3;
+            matrix.values[k] = sum + 1e-3;
         }
         (matrix, block_positions(&base, &conn, n))
     }
