@@ -28,7 +28,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Accum, Conj, Mat, MatMut, Par, Side};
+use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
 use std::sync::Mutex;
 
 /// One half with the separator: its own pattern in elimination order (the half's unknowns,
@@ -48,8 +48,10 @@ struct Half {
     factor: Vec<f64>,
     factor_scratch: MemBuffer,
     solve_scratch: MemBuffer,
-    /// The separator's corner of L (dense, lower), and its product with its transpose.
-    corner: Mat<f64>,
+    /// The separator's corner of L (dense, lower) is the bottom right of the last supernode,
+    /// unless the separator spans several (then this copy holds it).
+    corner_copy: Option<Mat<f64>>,
+    /// The corner times its transpose (lower triangle).
     corner_square: Mat<f64>,
     /// A right-hand side in local order.
     work: Vec<f64>,
@@ -231,6 +233,49 @@ fn supernodal<'a>(
     }
 }
 
+/// The separator's corner of a half's factor L: a view into the last supernode, or `copy`.
+fn corner<'a>(
+    symbolic: &'a SymbolicCholesky<usize>,
+    factor: &'a [f64],
+    interior: usize,
+    copy: &'a Option<Mat<f64>>,
+) -> MatRef<'a, f64> {
+    if let Some(copy) = copy {
+        return copy.as_ref();
+    }
+    let factor = supernodal(symbolic, factor);
+    let last = factor.supernode(factor.symbolic().n_supernodes() - 1);
+    let (offset, m) = (interior - last.start(), symbolic.nrows() - interior);
+    last.val().submatrix(offset, offset, m, m)
+}
+
+/// Copies the separator's corner of L out of the supernodes that hold it.
+fn copy_corner(
+    symbolic: &SymbolicCholesky<usize>,
+    factor: &[f64],
+    interior: usize,
+    copy: &mut Mat<f64>,
+) {
+    copy.fill(0.0);
+    let factor = supernodal(symbolic, factor);
+    for s in 0..factor.symbolic().n_supernodes() {
+        let node = factor.supernode(s);
+        let (first, values) = (node.start(), node.val());
+        let width = values.ncols();
+        if first + width <= interior {
+            continue;
+        }
+        let rows: Vec<usize> = (first..first + width)
+            .chain(node.pattern().iter().copied())
+            .collect();
+        for c in first.max(interior) - first..width {
+            for (r, &row) in rows.iter().enumerate().skip(c) {
+                copy[(row - interior, first + c - interior)] = values[(r, c)];
+            }
+        }
+    }
+}
+
 fn not_positive(unknown: usize, n: usize) -> Error {
     Error::Solver(format!(
         "the linearized system is not positive definite (pivot {unknown} of {n}); try a \
@@ -281,6 +326,14 @@ impl Half {
         );
         let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
         let m = n - interior;
+        let in_last_supernode = match symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) => s
+                .supernode_begin()
+                .last()
+                .is_some_and(|&first| first <= interior),
+            SymbolicCholeskyRaw::Simplicial(_) => false,
+        };
+        let corner_copy = (!in_last_supernode).then(|| Mat::zeros(m, m));
         Ok(Half {
             interior,
             values: vec![0.0; source.len()],
@@ -292,7 +345,7 @@ impl Half {
             symbolic,
             factor_scratch,
             solve_scratch,
-            corner: Mat::zeros(m, m),
+            corner_copy,
             corner_square: Mat::zeros(m, m),
             work: vec![0.0; n],
             to_separator: vec![0.0; m],
@@ -321,35 +374,23 @@ impl Half {
                 let LltError::NonPositivePivot { index } = e;
                 not_positive(self.global[index.min(n - 1)], matrix.n)
             })?;
-        let start = self.interior;
-        let mut corner = std::mem::replace(&mut self.corner, Mat::new());
-        corner.fill(0.0);
-        let factor = supernodal(&self.symbolic, &self.factor);
-        for s in 0..factor.symbolic().n_supernodes() {
-            let node = factor.supernode(s);
-            let (first, values) = (node.start(), node.val());
-            let width = values.ncols();
-            if first + width <= start {
-                continue;
-            }
-            let rows: Vec<usize> = (first..first + width)
-                .chain(node.pattern().iter().copied())
-                .collect();
-            for c in first.max(start) - first..width {
-                for (r, &row) in rows.iter().enumerate().skip(c) {
-                    corner[(row - start, first + c - start)] = values[(r, c)];
-                }
-            }
+        if let Some(copy) = &mut self.corner_copy {
+            copy_corner(&self.symbolic, &self.factor, self.interior, copy);
         }
-        self.corner = corner;
+        let corner = corner(
+            &self.symbolic,
+            &self.factor,
+            self.interior,
+            &self.corner_copy,
+        );
         // Only the lower triangle of the square is read.
         triangular::matmul(
             self.corner_square.as_mut(),
             BlockStructure::TriangularLower,
             Accum::Replace,
-            self.corner.as_ref(),
+            corner,
             BlockStructure::TriangularLower,
-            self.corner.transpose(),
+            corner.transpose(),
             BlockStructure::TriangularUpper,
             1.0,
             Par::Seq,
@@ -375,8 +416,9 @@ impl Half {
         );
         // The bottom is -L_S^-1 L_SA y; L_S times it is -L_SA y.
         self.to_separator.fill(0.0);
+        let corner = corner(&self.symbolic, &self.factor, start, &self.corner_copy);
         for (j, &u) in self.work[start..].iter().enumerate() {
-            let column = self.corner.col(j);
+            let column = corner.col(j);
             for i in j..n - start {
                 self.to_separator[i] += column[i] * u;
             }
@@ -388,8 +430,9 @@ impl Half {
     fn backward(&mut self, xs: &[f64]) {
         let start = self.interior;
         let m = xs.len();
+        let corner = corner(&self.symbolic, &self.factor, start, &self.corner_copy);
         for i in 0..m {
-            self.work[start + i] = (i..m).map(|j| self.corner[(j, i)] * xs[j]).sum();
+            self.work[start + i] = (i..m).map(|j| corner[(j, i)] * xs[j]).sum();
         }
         let n = self.work.len();
         let factor = supernodal(&self.symbolic, &self.factor);
@@ -469,27 +512,43 @@ mod tests {
         for &x in &a {
             assert!(graph.adjacency[x].iter().all(|y| !b.contains(y)));
         }
-        let mut split = SplitCholesky::analyse(&matrix, 3, [&a, &b], &s).unwrap();
         let mut whole = WholeCholesky::analyse(&matrix, 3, Some(&positions)).unwrap();
-        split.factorize(&matrix).unwrap();
         whole.factorize(&matrix).unwrap();
         let rhs: Vec<f64> = (0..matrix.n)
             .map(|i| ((i * 37) % 101) as f64 - 50.0)
             .collect();
-        let (mut xs, mut xw) = (rhs.clone(), rhs.clone());
-        split.solve_in_place(&mut xs);
+        let mut xw = rhs.clone();
         whole.solve_in_place(&mut xw);
-        let residual = multiply(&matrix, &xs)
-            .iter()
-            .zip(&rhs)
-            .fold(0.0f64, |m, (y, b)| m.max((y - b).abs()));
         let scale = rhs.iter().fold(0.0f64, |m, b| m.max(b.abs()));
-        assert!(residual < 1e-10 * scale, "residual {residual}");
-        let apart = xs
-            .iter()
-            .zip(&xw)
-            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
-        assert!(apart < 1e-10 * scale, "the two solutions differ by {apart}");
+        // The corner read in the last supernode (as here), and copied out (as for a separator
+        // that spans several supernodes).
+        for copied in [false, true] {
+            let mut split = SplitCholesky::analyse(&matrix, 3, [&a, &b], &s).unwrap();
+            assert!(split.halves.iter().all(|h| h.corner_copy.is_none()));
+            if copied {
+                let m = split.separator.len();
+                split.halves[1].corner_copy = Some(Mat::zeros(m, m));
+            }
+            split.factorize(&matrix).unwrap();
+            let mut xs = rhs.clone();
+            split.solve_in_place(&mut xs);
+            let residual = multiply(&matrix, &xs)
+                .iter()
+                .zip(&rhs)
+                .fold(0.0f64, |m, (y, b)| m.max((y - b).abs()));
+            assert!(
+                residual < 1e-10 * scale,
+                "residual {residual} (copied: {copied})"
+            );
+            let apart = xs
+                .iter()
+                .zip(&xw)
+                .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
+            assert!(
+                apart < 1e-10 * scale,
+                "the two solutions differ by {apart} (copied: {copied})"
+            );
+        }
     }
 
     #[test]
