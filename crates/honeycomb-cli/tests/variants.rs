@@ -293,3 +293,53 @@ fn bad_axes_and_sun_path_files_are_named() {
         &["zero.txt", ":1:"],
     );
 }
+
+/// The variant weights are options without a clap default (giving one for a variant not asked
+/// for is refused), so their defaults are written in the help text by hand: they must be the
+/// library's.
+#[test]
+fn the_help_states_the_library_defaults_of_the_variant_weights() {
+    use honeycomb::optimize::{AxesOptions, ParallelOptions, QuadOptions};
+    let output = run(["optimize", "--help"]);
+    let help = stdout(&output)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let (parallel, quads) = (ParallelOptions::default(), QuadOptions::default());
+    let expected = [
+        ("--w-parallel", format!("[default: {}]", parallel.weight)),
+        ("--w-depth", format!("[default: {}]", parallel.depth_weight)),
+        (
+            "--w-axes",
+            format!(
+                "[default: {}, {} with --light]",
+                AxesOptions::DEFAULT_WEIGHT,
+                AxesOptions::SHADING_WEIGHT
+            ),
+        ),
+        (
+            "--w-cons-faces",
+            format!("[default: {}]", quads.w_cons_faces),
+        ),
+        (
+            "--w-fair-zig",
+            format!("[default: {}]", quads.w_fair_zigzag),
+        ),
+        (
+            "--w-fair-str",
+            format!("[default: {}]", quads.w_fair_straight),
+        ),
+    ];
+    for (flag, default) in expected {
+        let at = help
+            .find(&format!("{flag} <"))
+            .unwrap_or_else(|| panic!("{flag} is not in the help:\n{help}"));
+        let entry = &help[at..];
+        let end = entry.find(']').map_or(entry.len(), |e| e + 1);
+        assert!(
+            entry[..end].ends_with(&default),
+            "{flag}: the help says {:?}, the library's default is {default}",
+            &entry[..end]
+        );
+    }
+}
