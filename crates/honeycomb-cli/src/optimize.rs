@@ -411,6 +411,14 @@ pub fn solve_options(
     Ok(Prepared { options, sun_path })
 }
 
+/// How a made mesh settled (`pipeline`): what `report.json` adds for it.
+struct Settling {
+    dropped_cells: usize,
+    solves: usize,
+    second_try: bool,
+    per_edge_fallback: bool,
+}
+
 /// Optimizes, measures, writes the structure directory and prints the result.
 pub fn optimize_and_write(
     base: &PolyMesh,
@@ -482,13 +490,13 @@ fn solve_and_write(
             bar.finish();
             let made = result?;
             let s = made.settled;
-            let settled = Some((
-                s.dropped_cells,
-                s.solves,
-                made.second_try,
-                made.per_edge_fallback,
-            ));
-            (s.optimized, s.measures, Cow::Owned(s.base), settled)
+            let settling = Settling {
+                dropped_cells: s.dropped_cells,
+                solves: s.solves,
+                second_try: made.second_try,
+                per_edge_fallback: made.per_edge_fallback,
+            };
+            (s.optimized, s.measures, Cow::Owned(s.base), Some(settling))
         }
         _ => {
             let result = optimize(base, surface, &options, &mut |info| bar.update(info));
@@ -500,11 +508,11 @@ fn solve_and_write(
     };
     let seconds = start.elapsed().as_secs_f64();
     let mut report = Report::new(&optimized, &measures, seconds);
-    if let Some((dropped, solves, second_try, per_edge_fallback)) = settled {
-        report.dropped_boundary_cells = Some(dropped);
-        report.solves = Some(solves);
-        report.second_try = Some(second_try);
-        report.per_edge_fallback = Some(per_edge_fallback);
+    if let Some(s) = settled {
+        report.dropped_boundary_cells = Some(s.dropped_cells);
+        report.solves = Some(s.solves);
+        report.second_try = Some(s.second_try);
+        report.per_edge_fallback = Some(s.per_edge_fallback);
     }
     if let Some(light) = args.light {
         let before = extruded_along_normals(
