@@ -75,13 +75,14 @@ pub fn run(args: Args) -> Result<()> {
     }
     if !args.json {
         println!(
-            "{}  {:>8} {:>8} {:>8} {:>8} {:>8}",
+            "{}  {:>8} {:>8} {:>8} {:>8} {:>8} {:>7}",
             Report::FIGURE16_HEADER,
             "ms/it",
             "factor%",
             "symb(s)",
             "nnz(L)M",
-            "peakMiB"
+            "peakMiB",
+            "threads"
         );
     }
     for &size in &args.sizes {
@@ -116,18 +117,20 @@ pub fn run(args: Args) -> Result<()> {
                     "seconds": seconds, "ms_per_iteration": per_iteration_ms,
                     "factorization_share": factor_share / 100.0,
                     "seconds_symbolic": s.seconds_symbolic, "factor_nnz": s.factor_nnz,
+                    "factor_threads": s.factor_threads,
                     "factorizations": s.factorizations, "peak_mib": peak_mib,
                 })
             );
         } else {
             println!(
-                "{}  {:>8.1} {:>7.0}% {:>8.3} {:>8.2} {:>8.0}",
+                "{}  {:>8.1} {:>7.0}% {:>8.3} {:>8.2} {:>8.0} {:>7}",
                 report.figure16_row(),
                 per_iteration_ms,
                 factor_share,
                 s.seconds_symbolic,
                 s.factor_nnz as f64 / 1e6,
-                peak_mib
+                peak_mib,
+                s.factor_threads
             );
         }
     }

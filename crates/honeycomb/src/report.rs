@@ -57,6 +57,9 @@ pub struct Report {
     /// Non-zeros of the normal matrix's upper triangle and of its Cholesky factor.
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
+    /// Threads of the numeric factorization: 2 when it is split in halves (large systems, two
+    /// cores).
+    pub factor_threads: usize,
     pub factorizations: usize,
     pub weights: Weights,
     /// The solver's unknowns for the wall normals: `cell_points` or `per_edge`.
@@ -117,6 +120,7 @@ impl Report {
             unknowns: s.unknowns,
             matrix_nnz: s.matrix_nnz,
             factor_nnz: s.factor_nnz,
+            factor_threads: s.factor_threads,
             factorizations: s.factorizations,
             weights: opt.weights,
             wall_normals: opt.wall_normals,

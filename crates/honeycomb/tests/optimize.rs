@@ -338,3 +338,24 @@ fn cell_points_refuse_variants() {
     let opt = optimize(&base, Some(&surface), &auto, &mut |_| {}).unwrap();
     assert_eq!(opt.wall_normals, WallNormals::PerEdge);
 }
+
+/// Large systems are factored in two halves on two threads where the process may use two, and
+/// reach the same honeycomb; small ones keep one factor.
+#[test]
+fn large_systems_are_factored_on_both_cores_and_small_ones_on_one() {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    for (vertices, large) in [(300, false), (1500, true)] {
+        let (base, surface) = lifted_hex_patch(Shape::Dome, vertices);
+        let opt = optimize(
+            &base,
+            Some(&surface),
+            &OptimizeOptions::default(),
+            &mut |_| {},
+        )
+        .unwrap();
+        let expected = if large && cores >= 2 { 2 } else { 1 };
+        assert_eq!(opt.solve.factor_threads, expected, "{vertices} vertices");
+        let m = measure(&opt.honeycomb, &Surface::from_mesh(&surface).unwrap());
+        assert_meets_targets(Shape::Dome, &m);
+    }
+}

@@ -74,6 +74,14 @@ impl Cholesky {
         }
     }
 
+    /// Threads a numeric factorization runs on.
+    pub fn threads(&self) -> usize {
+        match self {
+            Cholesky::Whole(_) => 1,
+            Cholesky::Split(_) => 2,
+        }
+    }
+
     /// Numeric factorization of the matrix's current values.
     pub fn factorize(&mut self, matrix: &NormalMatrix) -> Result<()> {
         match self {

@@ -65,6 +65,8 @@ pub struct SolveReport {
     pub unknowns: usize,
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
+    /// Threads of the numeric factorization: 2 when it is split in halves.
+    pub factor_threads: usize,
     pub factorizations: usize,
     pub seconds_symbolic: f64,
     pub seconds_assembly: f64,
@@ -358,6 +360,7 @@ impl<'a> GuidedProjection<'a> {
             unknowns: x.len(),
             matrix_nnz: self.matrix.nnz(),
             factor_nnz: self.cholesky.factor_nnz(),
+            factor_threads: self.cholesky.threads(),
             factorizations: state.factorizations,
             seconds_symbolic: self.seconds_symbolic,
             seconds_assembly: state.t_assembly.as_secs_f64(),
