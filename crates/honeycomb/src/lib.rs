@@ -14,6 +14,7 @@ pub mod init;
 pub mod interactive;
 pub mod mesh;
 pub mod optimize;
+pub mod parallel;
 pub mod render;
 pub mod report;
 pub mod solve;

@@ -17,6 +17,7 @@
 
 use super::normal_matrix::NormalMatrix;
 use crate::error::{Error, Result};
+use crate::parallel::both;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
@@ -29,7 +30,6 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
-use std::sync::Mutex;
 
 /// One half with the separator: its own pattern in elimination order (the half's unknowns,
 /// then the separator's), where each entry's value comes from in the whole matrix, and its
@@ -199,27 +199,6 @@ impl SplitCholesky {
             b[g] = x;
         }
     }
-}
-
-/// Runs `first` on a second thread and `second` on this one (both here, one after the other,
-/// when no thread can be started).
-fn both<A: Send, B>(first: impl FnOnce() -> A + Send, second: impl FnOnce() -> B) -> (A, B) {
-    let slot = Mutex::new(Some(first));
-    let run = || {
-        let f = slot.lock().map(|mut f| f.take()).ok().flatten();
-        f.map(|f| f())
-    };
-    std::thread::scope(|scope| {
-        let other = std::thread::Builder::new().spawn_scoped(scope, run);
-        let mine = second();
-        let theirs = match other {
-            Ok(thread) => thread
-                .join()
-                .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
-            Err(_) => None,
-        };
-        (theirs.or_else(run).expect("runs once"), mine)
-    })
 }
 
 /// The factor as supernodes (the halves are analysed with the supernodal form forced).

@@ -1,0 +1,48 @@
+//! Work on two threads, for the few places where it pays (the split factorization, closest
+//! points): scoped threads of the standard library, no pool.
+
+use std::sync::Mutex;
+
+/// Runs `first` on a second thread and `second` on this one (both here, one after the other,
+/// when no thread can be started).
+pub fn both<A: Send, B>(first: impl FnOnce() -> A + Send, second: impl FnOnce() -> B) -> (A, B) {
+    let slot = Mutex::new(Some(first));
+    let run = || {
+        let f = slot.lock().map(|mut f| f.take()).ok().flatten();
+        f.map(|f| f())
+    };
+    std::thread::scope(|scope| {
+        let other = std::thread::Builder::new().spawn_scoped(scope, run);
+        let mine = second();
+        let theirs = match other {
+            Ok(thread) => thread
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+            Err(_) => None,
+        };
+        (theirs.or_else(run).expect("runs once"), mine)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn both_run_once_each_and_the_first_on_another_thread() {
+        let here = std::thread::current().id();
+        let (a, b) = both(
+            || (std::thread::current().id(), 1),
+            || (std::thread::current().id(), 2),
+        );
+        assert_eq!((a.1, b.1), (1, 2));
+        assert_ne!(a.0, here, "the first runs on a second thread");
+        assert_eq!(b.0, here, "the second runs here");
+    }
+
+    #[test]
+    fn a_panic_on_the_other_thread_reaches_the_caller() {
+        let caught = std::panic::catch_unwind(|| both(|| panic!("inside"), || 0));
+        assert!(caught.is_err());
+    }
+}
