@@ -74,7 +74,8 @@ impl Cholesky {
         }
     }
 
-    /// Threads a numeric factorization runs on.
+    /// Threads a numeric factorization is meant to run on: 2 for a split one (whose halves run
+    /// one after the other where no second thread can be started).
     pub fn threads(&self) -> usize {
         match self {
             Cholesky::Whole(_) => 1,
@@ -163,12 +164,10 @@ impl WholeCholesky {
                 Default::default(),
             )
             .map_err(|e| {
+                // faer counts pivots in elimination order.
                 let LltError::NonPositivePivot { index } = e;
-                Error::Solver(format!(
-                    "the linearized system is not positive definite (pivot {index} of {}); \
-                     try a larger regularization (--eps)",
-                    matrix.n
-                ))
+                let unknown = self.symbolic.perm().map_or(index, |p| p.arrays().0[index]);
+                not_positive(unknown, matrix.n)
             })?;
         self.has_factor = true;
         Ok(())
@@ -192,6 +191,14 @@ impl WholeCholesky {
 /// two cores (bench at 1.5k, 8.5k and 35k vertices).
 fn parallelism() -> Par {
     Par::Seq
+}
+
+/// The error of a factorization that met a pivot that is not positive, at `unknown` of `n`.
+pub(super) fn not_positive(unknown: usize, n: usize) -> Error {
+    Error::Solver(format!(
+        "the linearized system is not positive definite (pivot at unknown {unknown} of {n}); \
+         try a larger regularization (--eps)"
+    ))
 }
 
 fn pattern_of(m: &NormalMatrix) -> SymbolicSparseColMatRef<'_, usize> {

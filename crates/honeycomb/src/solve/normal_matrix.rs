@@ -246,6 +246,29 @@ impl NormalMatrix {
         }
     }
 
+    /// A matrix given by its upper triangle (column-compressed, sorted rows, the diagonal
+    /// present), for testing the factorizations on small systems.
+    #[cfg(test)]
+    pub(super) fn from_upper(n: usize, columns: &[&[(usize, f64)]]) -> NormalMatrix {
+        let mut col_ptr = vec![0];
+        let (mut row_idx, mut values) = (Vec::new(), Vec::new());
+        for column in columns {
+            row_idx.extend(column.iter().map(|e| e.0));
+            values.extend(column.iter().map(|e| e.1));
+            col_ptr.push(row_idx.len());
+        }
+        NormalMatrix {
+            n,
+            diagonal: (0..n).map(|j| col_ptr[j + 1] - 1).collect(),
+            col_ptr,
+            row_idx,
+            values,
+            families: Vec::new(),
+            metric: None,
+            scratch: Vec::new(),
+        }
+    }
+
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
     }

@@ -15,6 +15,7 @@
 //! and they run on two threads; a single factor cannot be split like this by faer, whose
 //! parallel factorization measured no faster here.
 
+use super::cholesky::not_positive;
 use super::normal_matrix::NormalMatrix;
 use crate::error::{Error, Result};
 use crate::parallel::both;
@@ -70,6 +71,7 @@ pub struct SplitCholesky {
     schur: Mat<f64>,
     schur_scratch: MemBuffer,
     factor_nnz: usize,
+    has_factor: bool,
 }
 
 impl SplitCholesky {
@@ -123,10 +125,12 @@ impl SplitCholesky {
                 Default::default(),
             )),
             factor_nnz,
+            has_factor: false,
         })
     }
 
-    /// Non-zeros of both halves' factors and of the separator's dense factor.
+    /// Non-zeros of both halves' factors (each with the separator's block, stored square as
+    /// faer stores supernodes' diagonal blocks) and of the separator's dense factor.
     pub fn factor_nnz(&self) -> usize {
         self.factor_nnz
     }
@@ -134,12 +138,14 @@ impl SplitCholesky {
     /// Numeric factorization: both halves at once, then the separator's Schur complement.
     pub fn factorize(&mut self, matrix: &NormalMatrix) -> Result<()> {
         let n = self.n;
+        self.has_factor = false;
         let [a, b] = &mut self.halves;
         let (ra, rb) = both(|| a.factorize(matrix), || b.factorize(matrix));
         ra?;
         rb?;
         let m = self.separator.len();
         if m == 0 {
+            self.has_factor = true;
             return Ok(());
         }
         let [a, b] = &self.halves;
@@ -163,11 +169,14 @@ impl SplitCholesky {
             let LltError::NonPositivePivot { index } = e;
             not_positive(self.separator[index.min(m - 1)], n)
         })?;
+        self.has_factor = true;
         Ok(())
     }
 
     /// Solves `A x = b` in place with the last factorization.
     pub fn solve_in_place(&mut self, b: &mut [f64]) {
+        assert!(self.has_factor, "solve before factorize");
+        assert_eq!(b.len(), self.n, "right-hand side of another size");
         let m = self.separator.len();
         // Forward, both halves at once: each gives its part of the separator's right-hand side.
         let [a, c] = &mut self.halves;
@@ -255,13 +264,6 @@ fn copy_corner(
     }
 }
 
-fn not_positive(unknown: usize, n: usize) -> Error {
-    Error::Solver(format!(
-        "the linearized system is not positive definite (pivot {unknown} of {n}); try a \
-         larger regularization (--eps)"
-    ))
-}
-
 impl Half {
     fn analyse(matrix: &NormalMatrix, global: Vec<usize>, interior: usize) -> Result<Half> {
         let n = global.len();
@@ -333,6 +335,10 @@ impl Half {
 
     /// Factors the half and squares its separator corner.
     fn factorize(&mut self, matrix: &NormalMatrix) -> Result<()> {
+        // Nothing to factor (faer would not even make it supernodal).
+        if self.global.is_empty() {
+            return Ok(());
+        }
         for (v, &k) in self.values.iter_mut().zip(&self.source) {
             *v = matrix.values[k];
         }
@@ -380,6 +386,9 @@ impl Half {
     /// Forward substitution of the half's part of `b` (the separator's part taken as 0):
     /// keeps `y = L_AA^-1 b_A` in `work` and `-L_SA y` in `to_separator`.
     fn forward(&mut self, b: &[f64]) {
+        if self.global.is_empty() {
+            return;
+        }
         let start = self.interior;
         for (w, &g) in self.work.iter_mut().zip(&self.global[..start]) {
             *w = b[g];
@@ -407,6 +416,9 @@ impl Half {
     /// Backward substitution with the separator's solution `xs`: leaves the half's unknowns
     /// `L_AA^-T (y - L_SA^T xs)` at the start of `work`.
     fn backward(&mut self, xs: &[f64]) {
+        if self.global.is_empty() {
+            return;
+        }
         let start = self.interior;
         let m = xs.len();
         let corner = corner(&self.symbolic, &self.factor, start, &self.corner_copy);
@@ -499,8 +511,8 @@ mod tests {
         let mut xw = rhs.clone();
         whole.solve_in_place(&mut xw);
         let scale = rhs.iter().fold(0.0f64, |m, b| m.max(b.abs()));
-        // The corner read in the last supernode (as here), and copied out (as for a separator
-        // that spans several supernodes).
+        // The corner read in the last supernode (as here), and copied out (the way for a
+        // separator that spans several supernodes; `separator_over_several_supernodes` has one).
         for copied in [false, true] {
             let mut split = SplitCholesky::analyse(&matrix, 3, [&a, &b], &s).unwrap();
             assert!(split.halves.iter().all(|h| h.corner_copy.is_none()));
@@ -544,11 +556,52 @@ mod tests {
             let message = split.factorize(&matrix).unwrap_err().to_string();
             assert!(
                 message.contains("not positive definite")
-                    && message.contains(&format!("pivot {unknown} of {}", matrix.n)),
+                    && message.contains(&format!("at unknown {unknown} of {}", matrix.n)),
                 "{message}"
             );
             matrix.values[k] = kept;
         }
         split.factorize(&matrix).unwrap();
+    }
+
+    /// Halves with no unknowns of their own, no separator, and a separator whose corner spans
+    /// two supernodes (its two unknowns are coupled through nothing): each solves the system.
+    #[test]
+    fn empty_halves_and_a_separator_over_several_supernodes() {
+        // 4 x 4: unknown 0 coupled to 1 and 3; 1, 2 and 3 not to each other.
+        let matrix = NormalMatrix::from_upper(
+            4,
+            &[
+                &[(0, 4.0)],
+                &[(0, 1.0), (1, 3.0)],
+                &[(2, 2.0)],
+                &[(0, -1.0), (3, 5.0)],
+            ],
+        );
+        let rhs = [1.0, -2.0, 3.0, 0.5];
+        let cases: [([&[usize]; 2], &[usize]); 5] = [
+            ([&[0], &[]], &[1, 2, 3]),
+            ([&[0, 1], &[2]], &[3]),
+            ([&[0, 1, 2, 3], &[]], &[]),
+            ([&[], &[]], &[0, 1, 2, 3]),
+            ([&[], &[0, 1, 3]], &[2]),
+        ];
+        for (halves, separator) in cases {
+            let mut split = SplitCholesky::analyse(&matrix, 1, halves, separator).unwrap();
+            split.factorize(&matrix).unwrap();
+            let mut x = rhs;
+            split.solve_in_place(&mut x);
+            let residual = multiply(&matrix, &x)
+                .iter()
+                .zip(&rhs)
+                .fold(0.0f64, |m, (y, b)| m.max((y - b).abs()));
+            assert!(
+                residual < 1e-14,
+                "{halves:?} {separator:?}: residual {residual}"
+            );
+        }
+        // The first case's corner is copied out of two supernodes.
+        let split = SplitCholesky::analyse(&matrix, 1, [&[0], &[]], &[1, 2, 3]).unwrap();
+        assert!(split.halves[0].corner_copy.is_some());
     }
 }
