@@ -279,6 +279,9 @@ impl Half {
                 let i = local[matrix.row_idx[k]];
                 if i != usize::MAX {
                     columns[i.max(j)].push((i.min(j), k));
+                } else {
+                    // Only the separator may be coupled to the other half.
+                    debug_assert!(j >= interior, "the halves are coupled at unknown {gj}");
                 }
             }
         }
