@@ -102,11 +102,58 @@ impl Cholesky {
 
 /// One sparse factor of the whole system.
 pub struct WholeCholesky {
-    symbolic: SymbolicCholesky<usize>,
-    factor: Vec<f64>,
-    factor_scratch: MemBuffer,
-    solve_scratch: MemBuffer,
+    factor: SparseFactor,
     has_factor: bool,
+}
+
+/// A faer sparse Cholesky factor with its buffers: the symbolic analysis once, the numeric
+/// factorization as often as asked.
+pub(super) struct SparseFactor {
+    pub(super) symbolic: SymbolicCholesky<usize>,
+    /// The values of L.
+    pub(super) values: Vec<f64>,
+    scratch: MemBuffer,
+    pub(super) solve_scratch: MemBuffer,
+}
+
+impl SparseFactor {
+    /// The symbolic analysis of an upper-triangular `pattern`.
+    pub(super) fn analyse(
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        ordering: SymmetricOrdering<'_, usize>,
+        params: CholeskySymbolicParams<'_>,
+    ) -> Result<SparseFactor> {
+        let symbolic = factorize_symbolic_cholesky(pattern, Side::Upper, ordering, params)
+            .map_err(|e| Error::Solver(format!("symbolic factorization failed: {e:?}")))?;
+        Ok(SparseFactor {
+            scratch: MemBuffer::new(
+                symbolic.factorize_numeric_llt_scratch::<f64>(parallelism(), Default::default()),
+            ),
+            solve_scratch: MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq)),
+            values: vec![0.0; symbolic.len_val()],
+            symbolic,
+        })
+    }
+
+    /// Numeric factorization of `a` (upper triangle, on the analysed pattern). Err: the
+    /// elimination position of the first pivot that is not positive.
+    pub(super) fn factorize(
+        &mut self,
+        a: SparseColMatRef<'_, usize, f64>,
+    ) -> std::result::Result<(), usize> {
+        self.symbolic
+            .factorize_numeric_llt(
+                &mut self.values,
+                a,
+                Side::Upper,
+                LltRegularization::default(),
+                parallelism(),
+                MemStack::new(&mut self.scratch),
+                Default::default(),
+            )
+            .map(|_| ())
+            .map_err(|LltError::NonPositivePivot { index }| index)
+    }
 }
 
 impl WholeCholesky {
@@ -123,52 +170,27 @@ impl WholeCholesky {
             Some((fwd, inv)) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, inv, matrix.n)),
             None => SymmetricOrdering::Amd,
         };
-        let symbolic = factorize_symbolic_cholesky(
-            pattern,
-            Side::Upper,
-            ordering,
-            CholeskySymbolicParams::default(),
-        )
-        .map_err(|e| Error::Solver(format!("symbolic factorization failed: {e:?}")))?;
-        let factor_scratch = MemBuffer::new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(parallelism(), Default::default()),
-        );
-        let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
-        let factor = vec![0.0; symbolic.len_val()];
         Ok(WholeCholesky {
-            symbolic,
-            factor,
-            factor_scratch,
-            solve_scratch,
+            factor: SparseFactor::analyse(pattern, ordering, CholeskySymbolicParams::default())?,
             has_factor: false,
         })
     }
 
     /// Non-zeros of the factor L.
     pub fn factor_nnz(&self) -> usize {
-        self.symbolic.len_val()
+        self.factor.symbolic.len_val()
     }
 
     /// Numeric factorization of the matrix's current values.
     pub fn factorize(&mut self, matrix: &NormalMatrix) -> Result<()> {
-        let a = SparseColMatRef::new(pattern_of(matrix), &matrix.values);
         self.has_factor = false;
-        self.symbolic
-            .factorize_numeric_llt(
-                &mut self.factor,
-                a,
-                Side::Upper,
-                LltRegularization::default(),
-                parallelism(),
-                MemStack::new(&mut self.factor_scratch),
-                Default::default(),
-            )
-            .map_err(|e| {
-                // faer counts pivots in elimination order.
-                let LltError::NonPositivePivot { index } = e;
-                let unknown = self.symbolic.perm().map_or(index, |p| p.arrays().0[index]);
-                not_positive(unknown, matrix.n)
-            })?;
+        let a = SparseColMatRef::new(pattern_of(matrix), &matrix.values);
+        self.factor.factorize(a).map_err(|index| {
+            // faer counts pivots in elimination order.
+            let symbolic = &self.factor.symbolic;
+            let unknown = symbolic.perm().map_or(index, |p| p.arrays().0[index]);
+            not_positive(unknown, matrix.n)
+        })?;
         self.has_factor = true;
         Ok(())
     }
@@ -178,17 +200,18 @@ impl WholeCholesky {
         assert!(self.has_factor, "solve before factorize");
         let n = b.len();
         let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
-        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
+        let f = &mut self.factor;
+        LltRef::new(&f.symbolic, &f.values).solve_in_place_with_conj(
             Conj::No,
             rhs,
             Par::Seq,
-            MemStack::new(&mut self.solve_scratch),
+            MemStack::new(&mut f.solve_scratch),
         );
     }
 }
 
 /// Sequential: on this problem's sizes faer's parallel factorization measured no faster on
-/// two cores (bench at 1.5k, 8.5k and 35k vertices).
+/// two cores (bench at 1.5k, 8.5k and 35k vertices); `split.rs` uses the second core.
 fn parallelism() -> Par {
     Par::Seq
 }

@@ -19,7 +19,8 @@ use faer::sparse::SymbolicSparseColMatRef;
 /// 10% faster factorization at 22k blocks, 2x at 88k; at 4k blocks AMD has less fill).
 pub(super) const DISSECTION_MIN_BLOCKS: usize = 10_000;
 
-fn expand(p: &[usize], block: usize) -> Vec<usize> {
+/// The scalar unknowns of blocks `p` of `block` unknowns each, in that order.
+pub(super) fn expand(p: &[usize], block: usize) -> Vec<usize> {
     p.iter()
         .flat_map(|&b| (0..block).map(move |c| b * block + c))
         .collect()

@@ -15,9 +15,10 @@
 //! and they run on two threads; a single factor cannot be split like this by faer, whose
 //! parallel factorization measured no faster here.
 
-use super::cholesky::not_positive;
+use super::cholesky::{not_positive, SparseFactor};
 use super::normal_matrix::NormalMatrix;
-use crate::error::{Error, Result};
+use super::ordering::expand;
+use crate::error::Result;
 use crate::parallel::both;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
@@ -25,12 +26,11 @@ use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw,
-    SymmetricOrdering,
+    CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
+use faer::{Accum, Conj, Mat, MatMut, MatRef, Par};
 
 /// One half with the separator: its own pattern in elimination order (the half's unknowns,
 /// then the separator's), where each entry's value comes from in the whole matrix, and its
@@ -45,10 +45,7 @@ struct Half {
     /// Entry k's value is the whole matrix's value `source[k]`.
     source: Vec<usize>,
     values: Vec<f64>,
-    symbolic: SymbolicCholesky<usize>,
-    factor: Vec<f64>,
-    factor_scratch: MemBuffer,
-    solve_scratch: MemBuffer,
+    factor: SparseFactor,
     /// The separator's corner of L (dense, lower) is the bottom right of the last supernode,
     /// unless the separator spans several (then this copy holds it).
     corner_copy: Option<Mat<f64>>,
@@ -83,12 +80,7 @@ impl SplitCholesky {
         halves: [&[usize]; 2],
         separator: &[usize],
     ) -> Result<SplitCholesky> {
-        let scalars = |blocks: &[usize]| -> Vec<usize> {
-            blocks
-                .iter()
-                .flat_map(|&b| (0..block).map(move |c| b * block + c))
-                .collect()
-        };
+        let scalars = |blocks: &[usize]| expand(blocks, block);
         let separator = scalars(separator);
         let m = separator.len();
         let half = |blocks: &[usize]| {
@@ -112,7 +104,8 @@ impl SplitCholesky {
                 }
             }
         }
-        let factor_nnz = a.symbolic.len_val() + b.symbolic.len_val() + m * (m + 1) / 2;
+        let factor_nnz =
+            a.factor.symbolic.len_val() + b.factor.symbolic.len_val() + m * (m + 1) / 2;
         Ok(SplitCholesky {
             n: matrix.n,
             halves: [a, b],
@@ -295,22 +288,13 @@ impl Half {
             col_ptr.push(row_idx.len());
         }
         let pattern = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let symbolic = factorize_symbolic_cholesky(
-            pattern,
-            Side::Upper,
-            SymmetricOrdering::Identity,
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..Default::default()
-            },
-        )
-        .map_err(|e| Error::Solver(format!("symbolic factorization failed: {e:?}")))?;
-        let factor_scratch = MemBuffer::new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-        );
-        let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let factor = SparseFactor::analyse(pattern, SymmetricOrdering::Identity, params)?;
         let m = n - interior;
-        let in_last_supernode = match symbolic.raw() {
+        let in_last_supernode = match factor.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(s) => s
                 .supernode_begin()
                 .last()
@@ -321,14 +305,11 @@ impl Half {
         Ok(Half {
             interior,
             values: vec![0.0; source.len()],
-            factor: vec![0.0; symbolic.len_val()],
+            factor,
             global,
             col_ptr,
             row_idx,
             source,
-            symbolic,
-            factor_scratch,
-            solve_scratch,
             corner_copy,
             corner_square: Mat::zeros(m, m),
             work: vec![0.0; n],
@@ -348,26 +329,21 @@ impl Half {
         let n = self.global.len();
         let pattern =
             SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx);
-        self.symbolic
-            .factorize_numeric_llt(
-                &mut self.factor,
-                SparseColMatRef::new(pattern, &self.values),
-                Side::Upper,
-                LltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut self.factor_scratch),
-                Default::default(),
-            )
-            .map_err(|e| {
-                let LltError::NonPositivePivot { index } = e;
-                not_positive(self.global[index.min(n - 1)], matrix.n)
-            })?;
+        let a = SparseColMatRef::new(pattern, &self.values);
+        self.factor
+            .factorize(a)
+            .map_err(|index| not_positive(self.global[index.min(n - 1)], matrix.n))?;
         if let Some(copy) = &mut self.corner_copy {
-            copy_corner(&self.symbolic, &self.factor, self.interior, copy);
+            copy_corner(
+                &self.factor.symbolic,
+                &self.factor.values,
+                self.interior,
+                copy,
+            );
         }
         let corner = corner(
-            &self.symbolic,
-            &self.factor,
+            &self.factor.symbolic,
+            &self.factor.values,
             self.interior,
             &self.corner_copy,
         );
@@ -398,16 +374,21 @@ impl Half {
         }
         self.work[start..].fill(0.0);
         let n = self.work.len();
-        let factor = supernodal(&self.symbolic, &self.factor);
+        let factor = supernodal(&self.factor.symbolic, &self.factor.values);
         factor.l_solve_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut self.work, n, 1),
             Par::Seq,
-            MemStack::new(&mut self.solve_scratch),
+            MemStack::new(&mut self.factor.solve_scratch),
         );
         // The bottom is -L_S^-1 L_SA y; L_S times it is -L_SA y.
         self.to_separator.fill(0.0);
-        let corner = corner(&self.symbolic, &self.factor, start, &self.corner_copy);
+        let corner = corner(
+            &self.factor.symbolic,
+            &self.factor.values,
+            start,
+            &self.corner_copy,
+        );
         for (j, &u) in self.work[start..].iter().enumerate() {
             let column = corner.col(j);
             for i in j..n - start {
@@ -424,17 +405,22 @@ impl Half {
         }
         let start = self.interior;
         let m = xs.len();
-        let corner = corner(&self.symbolic, &self.factor, start, &self.corner_copy);
+        let corner = corner(
+            &self.factor.symbolic,
+            &self.factor.values,
+            start,
+            &self.corner_copy,
+        );
         for i in 0..m {
             self.work[start + i] = (i..m).map(|j| corner[(j, i)] * xs[j]).sum();
         }
         let n = self.work.len();
-        let factor = supernodal(&self.symbolic, &self.factor);
+        let factor = supernodal(&self.factor.symbolic, &self.factor.values);
         factor.l_transpose_solve_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut self.work, n, 1),
             Par::Seq,
-            MemStack::new(&mut self.solve_scratch),
+            MemStack::new(&mut self.factor.solve_scratch),
         );
     }
 }
