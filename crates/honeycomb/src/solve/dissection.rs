@@ -24,10 +24,7 @@ pub struct BlockGraph {
 pub fn nested_dissection(graph: &BlockGraph, positions: &[Option<Vec3>]) -> Result<Vec<usize>> {
     let nb = graph.adjacency.len();
     let positions = complete_positions(graph, positions);
-    let mut scratch = Scratch {
-        side: vec![Side::Out; nb],
-        local: vec![usize::MAX; nb],
-    };
+    let mut scratch = Scratch::new(nb);
     let mut order = Vec::with_capacity(nb);
     let all: Vec<usize> = (0..nb).collect();
     dissect(&all, graph, &positions, &mut scratch, &mut order)?;
@@ -45,6 +42,16 @@ enum Side {
 struct Scratch {
     side: Vec<Side>,
     local: Vec<usize>,
+}
+
+impl Scratch {
+    /// Scratch for a graph of `nb` blocks: every block outside the piece at hand.
+    fn new(nb: usize) -> Scratch {
+        Scratch {
+            side: vec![Side::Out; nb],
+            local: vec![usize::MAX; nb],
+        }
+    }
 }
 
 fn dissect(
@@ -122,10 +129,7 @@ pub fn split_in_halves(
 ) -> Result<[Vec<usize>; 3]> {
     let nb = graph.adjacency.len();
     let positions = complete_positions(graph, positions);
-    let mut scratch = Scratch {
-        side: vec![Side::Out; nb],
-        local: vec![usize::MAX; nb],
-    };
+    let mut scratch = Scratch::new(nb);
     let all: Vec<usize> = (0..nb).collect();
     let pieces = cut(&all, graph, &positions, &mut scratch);
     let [low, high, separator] = &pieces;
@@ -403,10 +407,7 @@ mod tests {
         let restricted = BlockGraph {
             adjacency: restricted,
         };
-        let mut scratch = Scratch {
-            side: vec![Side::Out; 240],
-            local: vec![usize::MAX; 240],
-        };
+        let mut scratch = Scratch::new(240);
         let cover = smallest_cover(&low, &few, &restricted, &mut scratch);
         assert_eq!(cover.len(), 4, "{cover:?}");
         let cover = smallest_cover(&low, &high, &graph, &mut scratch);
