@@ -31,9 +31,14 @@ pub struct Page {
 
 impl Page {
     fn tell(&self, message: Value) {
-        // A page that has gone needs no answer.
-        let _ = self.reply.send(Arc::from(message.to_string()));
+        tell(&self.reply, message);
     }
+}
+
+/// Sends `message` to one page.
+fn tell(reply: &mpsc::UnboundedSender<Arc<str>>, message: Value) {
+    // A page that has gone needs no answer.
+    let _ = reply.send(Arc::from(message.to_string()));
 }
 
 pub struct Editor {
@@ -150,9 +155,8 @@ impl Editor {
             if let Some(command) = command {
                 match command {
                     Command::Hello(reply) => {
-                        let mesh = mesh_message(ws, label);
-                        let _ = reply.send(Arc::from(mesh.to_string()));
-                        let _ = reply.send(Arc::from(self.state(session, &p).to_string()));
+                        tell(&reply, mesh_message(ws, label));
+                        tell(&reply, self.state(session, &p));
                     }
                     Command::Message(message, at, page) => {
                         if let Some(next) = self.handle(session, ws, message, at, page, &mut p) {
