@@ -6,10 +6,10 @@ use crate::protocol::{error_message, mesh_message, state_message, ClientMessage,
 use crate::source::{save_dir, Source};
 use honeycomb::export::write_structure;
 use honeycomb::interactive::{EditSession, SessionOptions, Workspace};
-use honeycomb::mesh::write_mesh;
-use honeycomb::{Error, Result};
+use honeycomb::mesh::{replace_folder, write_mesh};
+use honeycomb::Result;
 use serde_json::{json, Value};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, TryRecvError};
 use std::sync::Arc;
 use std::time::Instant;
@@ -252,38 +252,22 @@ impl Editor {
         None
     }
 
-    /// Writes the current structure, its surface and its measures into `root/name`: first to a
-    /// temporary folder beside it, then renamed, so a reader never sees half a save.
+    /// Writes the current structure, its surface and its measures into `root/name`, which
+    /// appears whole or not at all (a failed save leaves the earlier one as it was).
     fn save(&self, session: &EditSession, ws: &Workspace, name: &str) -> Result<PathBuf> {
         let dir = save_dir(&self.save_root, name)?;
-        let io = |path: &Path, source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        };
-        std::fs::create_dir_all(&self.save_root).map_err(|e| io(&self.save_root, e))?;
-        let tmp = self
-            .save_root
-            .join(format!(".{name}.saving-{}", std::process::id()));
-        if tmp.exists() {
-            std::fs::remove_dir_all(&tmp).map_err(|e| io(&tmp, e))?;
-        }
-        std::fs::create_dir_all(&tmp).map_err(|e| io(&tmp, e))?;
         let view = session.view();
-        write_mesh(
-            &tmp.join("surface.obj"),
-            &ws.model_surface.mesh_for_export(),
-        )?;
-        write_structure(&tmp, &view.honeycomb, &json!({ "measures": view.measures }))?;
-        if dir.exists() {
-            let old = self
-                .save_root
-                .join(format!(".{name}.old-{}", std::process::id()));
-            std::fs::rename(&dir, &old).map_err(|e| io(&dir, e))?;
-            std::fs::rename(&tmp, &dir).map_err(|e| io(&dir, e))?;
-            let _ = std::fs::remove_dir_all(&old);
-        } else {
-            std::fs::rename(&tmp, &dir).map_err(|e| io(&dir, e))?;
-        }
+        replace_folder(&dir, |folder| {
+            write_mesh(
+                &folder.join("surface.obj"),
+                &ws.model_surface.mesh_for_export(),
+            )?;
+            write_structure(
+                folder,
+                &view.honeycomb,
+                &json!({ "measures": view.measures }),
+            )
+        })?;
         Ok(dir)
     }
 }

@@ -101,6 +101,51 @@ impl Outputs {
     }
 }
 
+/// Fills a new folder that takes `dir`'s place whole: `fill` writes into a hidden folder beside
+/// `dir`, which is then renamed to `dir` (an old `dir` is moved aside first and removed after).
+/// If `fill` or a rename fails, the hidden folder is removed and an old `dir` stays as it was.
+pub fn replace_folder(dir: &Path, fill: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
+    let io = |path: &Path, source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let (Some(parent), Some(name)) = (dir.parent(), dir.file_name()) else {
+        return Err(Error::Parameter(format!(
+            "cannot write the folder {}: not a folder name",
+            dir.display()
+        )));
+    };
+    let beside = |role: &str| {
+        let mut hidden = OsString::from(".");
+        hidden.push(name);
+        hidden.push(format!(
+            ".{role}-{}-{}",
+            std::process::id(),
+            TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        parent.join(hidden)
+    };
+    let (temp, old) = (beside("saving"), beside("old"));
+    std::fs::create_dir_all(&temp).map_err(|e| io(&temp, e))?;
+    let swapped = fill(&temp).and_then(|()| {
+        if !dir.exists() {
+            return std::fs::rename(&temp, dir).map_err(|e| io(dir, e));
+        }
+        std::fs::rename(dir, &old).map_err(|e| io(dir, e))?;
+        std::fs::rename(&temp, dir).map_err(|e| {
+            // Best effort: put the old folder back; the rename's error is the one to report.
+            let _ = std::fs::rename(&old, dir);
+            io(dir, e)
+        })?;
+        let _ = std::fs::remove_dir_all(&old);
+        Ok(())
+    });
+    if swapped.is_err() {
+        let _ = std::fs::remove_dir_all(&temp);
+    }
+    swapped
+}
+
 impl Drop for Outputs {
     fn drop(&mut self) {
         for (temp, _) in &self.staged {
@@ -150,6 +195,51 @@ mod tests {
         assert_eq!(names(&dir), ["a.txt", "b.txt"]);
         assert_eq!(std::fs::read_to_string(dir.join("b.txt")).unwrap(), "b");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_replaced_folder_holds_only_the_new_files() {
+        let root = scratch("replace");
+        let dir = root.join("saved");
+        for contents in ["first", "second"] {
+            replace_folder(&dir, |d| {
+                write_atomically(&d.join("a.txt"), |w| w.write_all(contents.as_bytes()))
+            })
+            .unwrap();
+            assert_eq!(
+                std::fs::read_to_string(dir.join("a.txt")).unwrap(),
+                contents
+            );
+        }
+        std::fs::write(dir.join("stale.txt"), "x").unwrap();
+        replace_folder(&dir, |d| {
+            write_atomically(&d.join("b.txt"), |w| w.write_all(b"b"))
+        })
+        .unwrap();
+        assert_eq!(names(&dir), ["b.txt"]);
+        assert_eq!(names(&root), ["saved"]);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn a_failed_fill_leaves_the_old_folder_and_nothing_else() {
+        let root = scratch("replace-failure");
+        let dir = root.join("saved");
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("a.txt"), "old").unwrap();
+        let failed = replace_folder(&dir, |d| {
+            write_atomically(&d.join("a.txt"), |w| w.write_all(b"new"))?;
+            Err(Error::Parameter("a failure half way".into()))
+        });
+        assert!(matches!(failed, Err(Error::Parameter(_))), "{failed:?}");
+        assert_eq!(names(&root), ["saved"]);
+        assert_eq!(names(&dir), ["a.txt"]);
+        assert_eq!(std::fs::read_to_string(dir.join("a.txt")).unwrap(), "old");
+        // Without an old folder, a failure leaves no folder at all.
+        let fresh = root.join("fresh");
+        assert!(replace_folder(&fresh, |_| Err(Error::Parameter("no".into()))).is_err());
+        assert_eq!(names(&root), ["saved"]);
+        std::fs::remove_dir_all(&root).unwrap();
     }
 
     #[test]

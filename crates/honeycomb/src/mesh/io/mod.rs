@@ -10,7 +10,7 @@ mod obj;
 mod off;
 mod ply;
 
-pub use atomic::{write_atomically, Outputs};
+pub use atomic::{replace_folder, write_atomically, Outputs};
 
 pub use obj::{parse_obj, write_obj};
 pub use off::{parse_off, write_off};
