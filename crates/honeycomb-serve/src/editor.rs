@@ -214,10 +214,10 @@ impl Editor {
             return None;
         }
         match message {
-            ClientMessage::Undo | ClientMessage::Redo | ClientMessage::Cancel => {
+            ClientMessage::Undo {} | ClientMessage::Redo {} | ClientMessage::Cancel {} => {
                 let changed = match message {
-                    ClientMessage::Undo => session.undo(),
-                    ClientMessage::Redo => session.redo(),
+                    ClientMessage::Undo {} => session.undo(),
+                    ClientMessage::Redo {} => session.redo(),
                     _ => {
                         session.cancel();
                         true

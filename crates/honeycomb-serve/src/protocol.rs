@@ -35,10 +35,13 @@ pub enum ClientMessage {
         radius: usize,
         stroke: Option<u64>,
     },
-    Undo,
-    Redo,
+    // Empty braces, not unit variants: serde lets a unit variant of a tagged enum through with
+    // any extra fields, and a page that sends `{"type": "undo", "steps": 3}` should hear that
+    // `steps` means nothing here.
+    Undo {},
+    Redo {},
     /// Stop the running solve where it stands.
-    Cancel,
+    Cancel {},
     /// Write the current structure to the save folder under `name`.
     Save {
         name: String,
@@ -191,4 +194,31 @@ pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
 
 pub fn error_message(message: &str) -> Value {
     json!({ "type": "error", "message": message })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every message type reads in its plain form and refuses a field it does not have.
+    #[test]
+    fn every_message_refuses_a_field_it_does_not_have() {
+        let plain = [
+            json!({"type": "drag_vertex", "vertex": 1, "target": [0, 0, 1]}),
+            json!({"type": "slide", "vertex": 1, "distance": 0.1}),
+            json!({"type": "drag_axis", "vertex": 1, "direction": [0, 0, 1], "radius": 2}),
+            json!({"type": "undo"}),
+            json!({"type": "redo"}),
+            json!({"type": "cancel"}),
+            json!({"type": "save", "name": "a"}),
+            json!({"type": "load", "name": "a"}),
+        ];
+        for m in plain {
+            assert!(ClientMessage::parse(&m.to_string()).is_ok(), "{m}");
+            let mut extra = m.clone();
+            extra["steps"] = json!(3);
+            let e = ClientMessage::parse(&extra.to_string()).unwrap_err();
+            assert!(e.contains("unknown field `steps`"), "{extra}: {e}");
+        }
+    }
 }

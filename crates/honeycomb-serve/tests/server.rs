@@ -104,6 +104,7 @@ fn malformed_messages_get_an_error_and_change_nothing() {
             .to_string(),
         json!({"type": "drag_axis", "vertex": 1, "direction": [0, 0], "radius": 2}).to_string(),
         json!({"type": "drag_vertex", "vertex": 1, "target": [0, 0, 1], "extra": true}).to_string(),
+        json!({"type": "undo", "steps": 3}).to_string(),
         json!({"type": "slide", "vertex": -1, "distance": 0.1}).to_string(),
         r#"{"type":"slide","vertex":1,"distance":1e999}"#.to_string(),
         json!({"type": "save", "name": "x".repeat(70 * 1024)}).to_string(),
