@@ -10,6 +10,7 @@
 
 use crate::error::Result;
 use crate::geometry::Vec3;
+use crate::parallel::both;
 
 /// Pieces of at most this many blocks are not cut further.
 const LEAF_BLOCKS: usize = 256;
@@ -133,16 +134,21 @@ pub fn split_in_halves(
     let all: Vec<usize> = (0..nb).collect();
     let pieces = cut(&all, graph, &positions, &mut scratch);
     let [low, high, separator] = &pieces;
-    let mut ordered: [Vec<usize>; 3] = Default::default();
-    for (half, order) in [low, high].into_iter().zip(&mut ordered) {
+    // The halves share no block: each is ordered on its own thread with its own scratch.
+    let order_half = |half: &[usize]| -> Result<Vec<usize>> {
+        let mut scratch = Scratch::new(nb);
+        let mut order = Vec::with_capacity(half.len());
         if half.len() >= dissect_from {
-            dissect(half, graph, &positions, &mut scratch, order)?;
+            dissect(half, graph, &positions, &mut scratch, &mut order)?;
         } else {
-            minimum_degree(half, graph, &mut scratch, order)?;
+            minimum_degree(half, graph, &mut scratch, &mut order)?;
         }
-    }
-    minimum_degree(separator, graph, &mut scratch, &mut ordered[2])?;
-    Ok(ordered)
+        Ok(order)
+    };
+    let (a, b) = both(|| order_half(low), || order_half(high));
+    let mut last = Vec::with_capacity(separator.len());
+    minimum_degree(separator, graph, &mut scratch, &mut last)?;
+    Ok([a?, b?, last])
 }
 
 /// The fewest blocks that cut every coupling between the two rows along the cut: a minimum
