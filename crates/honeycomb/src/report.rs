@@ -54,6 +54,9 @@ pub struct Report {
     pub seconds_factorization: f64,
     pub seconds_other: f64,
     pub unknowns: usize,
+    /// Unknowns eliminated exactly before the factorization (the vertices of a cell-point
+    /// solve, whose rows touch one vertex each); the factor is of the rest.
+    pub eliminated_unknowns: usize,
     /// Non-zeros of the normal matrix's upper triangle and of its Cholesky factor.
     pub matrix_nnz: usize,
     pub factor_nnz: usize,
@@ -118,6 +121,7 @@ impl Report {
             seconds_factorization: s.seconds_factorization,
             seconds_other: s.seconds_other,
             unknowns: s.unknowns,
+            eliminated_unknowns: s.eliminated_unknowns,
             matrix_nnz: s.matrix_nnz,
             factor_nnz: s.factor_nnz,
             factor_threads: s.factor_threads,

@@ -355,6 +355,13 @@ fn large_systems_are_factored_on_both_cores_and_small_ones_on_one() {
         .unwrap();
         let expected = if large && cores >= 2 { 2 } else { 1 };
         assert_eq!(opt.solve.factor_threads, expected, "{vertices} vertices");
+        // The vertices (no row of a cell-point solve touches two) are eliminated before the
+        // factorization.
+        assert_eq!(
+            opt.solve.eliminated_unknowns,
+            3 * base.vertices.len(),
+            "{vertices} vertices"
+        );
         let m = measure(&opt.honeycomb, &Surface::from_mesh(&surface).unwrap());
         assert_meets_targets(Shape::Dome, &m);
     }

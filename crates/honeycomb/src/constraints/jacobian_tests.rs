@@ -113,6 +113,37 @@ fn variant_families_match_finite_differences() {
     assert_families_match(&mut problem.families, &problem.x, &expected);
 }
 
+/// A cell-point solve's families, as `optimize` builds them: the wall planes with offsets
+/// instead of the wall consistency. Their offsets start on the walls through the edges'
+/// midpoints, so the rows start at zero.
+#[test]
+fn wall_plane_families_match_finite_differences() {
+    let (frame, mesh, surface, conn) = saddle();
+    let options = OptimizeOptions::cell_points().resolved();
+    let mut problem = Problem::build(&mesh, &conn, &surface, &options, &options.weights, &frame);
+    let names: Vec<&str> = problem.families.iter().map(|c| c.name()).collect();
+    assert!(!names.contains(&"wall_consistency"), "{names:?}");
+    let planes = problem.families.iter().find(|c| c.name() == "wall_plane");
+    let planes = planes.expect("wall planes");
+    let mut res = vec![0.0; planes.num_rows()];
+    let mut jac = vec![0.0; planes.num_rows() * planes.arity()];
+    planes.evaluate(&problem.x, &mut res, &mut jac);
+    // At the start each plane holds its edge's midpoint; the ends are off only as far as
+    // the initial normal is off perpendicular to the edge (it is exactly perpendicular).
+    let off = res.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+    assert!(off < 1e-12, "wall planes start {off} off their edges");
+    for (i, xi) in problem.x.iter_mut().enumerate() {
+        *xi += 0.05 * jitter(i + 5);
+    }
+    let expected = [
+        "normalization",
+        "wall_plane",
+        "node_120_valence3",
+        "closeness",
+    ];
+    assert_families_match(&mut problem.families, &problem.x, &expected);
+}
+
 /// The quad cover's families (both patterns): normals, planarity, polyline fairness.
 #[test]
 fn quad_families_match_finite_differences() {

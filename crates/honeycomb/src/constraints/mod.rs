@@ -15,6 +15,7 @@ mod prescribed_axes;
 mod quad_planarity;
 mod targets;
 mod wall_consistency;
+mod wall_plane;
 
 pub use boundary_curve::BoundaryCurve;
 pub use closeness::Closeness;
@@ -30,6 +31,7 @@ pub use prescribed_axes::PrescribedAxes;
 pub use quad_planarity::{QuadNormalBlock, QuadNormalization, QuadPlanarity};
 pub use targets::{AxisTargets, SharedTargets, VertexTargets};
 pub use wall_consistency::WallConsistency;
+pub use wall_plane::WallPlane;
 
 #[cfg(test)]
 mod jacobian_tests;

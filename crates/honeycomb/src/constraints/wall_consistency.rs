@@ -9,9 +9,13 @@ pub struct WallConsistency {
     pub weight: f64,
 }
 
+impl WallConsistency {
+    pub const NAME: &'static str = "wall_consistency";
+}
+
 impl Constraint for WallConsistency {
     fn name(&self) -> &str {
-        "wall_consistency"
+        Self::NAME
     }
     fn weight(&self) -> f64 {
         self.weight

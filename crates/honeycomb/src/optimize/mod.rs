@@ -22,9 +22,11 @@ pub use quads::{QuadOptions, QuadPattern};
 pub use variants::{shading_axes, unit_light, AxesOptions, ParallelOptions};
 pub use weights::Weights;
 
+use problem::wall_planes;
+
 use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
-    PrescribedAxes,
+    PrescribedAxes, WallConsistency,
 };
 use crate::error::{short_number, Error, Result};
 use crate::geometry::Vec3;
@@ -354,6 +356,13 @@ impl<'a> Problem<'a> {
                 &mut families,
             )
         });
+        if options.wall_normals == WallNormals::CellPoints {
+            // Both ends on the wall's plane instead of the edge in it: no row then couples two
+            // vertices, and the solver eliminates the vertices before it factors.
+            families.retain(|f| f.name() != WallConsistency::NAME);
+            let planes = wall_planes(mesh, conn, &mut x, weights.consistency);
+            families.push(Box::new(planes));
+        }
         Problem {
             layout,
             x,
@@ -392,10 +401,13 @@ pub fn optimize(
     let solve = if options.wall_normals == WallNormals::CellPoints {
         let d = dual_normals::dual_normals(&mesh, &conn, layout, &x)?;
         let mut y = d.y;
+        // The vertices' blocks, which no row couples (see `wall_planes`).
+        let vertices: Vec<usize> = (0..layout.num_vertices).collect();
         let mut solver = GuidedProjection::with_substitution(
             problem.families,
             d.substitution,
             Some(&d.positions),
+            &vertices,
         )?;
         let solve = solver.solve(&mut y, &options.solver, progress)?;
         x = solver.family_unknowns(&y);

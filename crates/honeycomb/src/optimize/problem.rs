@@ -4,7 +4,7 @@
 use super::Weights;
 use crate::constraints::{
     BoundaryCurve, Closeness, Layout, MinEdgeLength, Node2, Node3, Normalization, OppositeWalls,
-    PrescribedAxes, WallConsistency,
+    PrescribedAxes, WallConsistency, WallPlane,
 };
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
@@ -80,6 +80,33 @@ fn opposite_wall_pairs(mesh: &PolyMesh, conn: &Connectivity) -> Vec<[(usize, f64
 pub fn min_edge_family(mesh: &PolyMesh, conn: &Connectivity, length: f64) -> MinEdgeLength {
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
     MinEdgeLength::new(layout, conn.edges.clone(), length, layout.len(), 1.0)
+}
+
+/// Every edge's wall plane with an offset of its own ([`WallPlane`]), measured from the edge's
+/// midpoint in `x` (laid out as [`Layout`] first); the offsets, one unknown per edge, are
+/// appended to `x`.
+pub(super) fn wall_planes(
+    mesh: &PolyMesh,
+    conn: &Connectivity,
+    x: &mut Vec<f64>,
+    weight: f64,
+) -> WallPlane {
+    let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+    let anchors = conn
+        .edges
+        .iter()
+        .map(|&[a, b]| (layout.vertex_at(x, a) + layout.vertex_at(x, b)) * 0.5)
+        .collect();
+    let planes = WallPlane {
+        layout,
+        edges: conn.edges.clone(),
+        offsets: (x.len()..x.len() + conn.num_edges()).collect(),
+        anchors,
+        weight,
+    };
+    x.resize(x.len() + conn.num_edges(), 0.0);
+    planes.set_initial_offsets(x);
+    planes
 }
 
 /// The walls (edge, sign seen from the node) at every node of valence 3 and of valence 2.

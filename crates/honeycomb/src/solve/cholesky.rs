@@ -32,8 +32,8 @@ pub enum Cholesky {
 const SPLIT_MIN_BLOCKS: usize = 2000;
 
 impl Cholesky {
-    /// Symbolic analysis; with `block > 1` (unknowns in blocks of that many consecutive
-    /// indices) the ordering is computed on the block graph, by nested dissection when the
+    /// Symbolic analysis of unknowns in blocks of `block` consecutive indices (1: each on its
+    /// own): the ordering is computed on the block graph, by nested dissection when the
     /// blocks' `positions` are given and the system is large. With positions, from
     /// `SPLIT_MIN_BLOCKS` blocks and two threads, the system is split at the first cut.
     pub fn analyse(
@@ -46,7 +46,6 @@ impl Cholesky {
         match positions {
             Some(p)
                 if threads >= 2
-                    && block > 1
                     && matrix.n.is_multiple_of(block)
                     && nb >= SPLIT_MIN_BLOCKS
                     && p.len() == nb =>
@@ -163,7 +162,9 @@ impl WholeCholesky {
         positions: Option<&[Option<Vec3>]>,
     ) -> Result<WholeCholesky> {
         let pattern = pattern_of(matrix);
-        let blocked = (block > 1 && matrix.n.is_multiple_of(block))
+        let blocked = matrix
+            .n
+            .is_multiple_of(block)
             .then(|| block_order(matrix, block, positions))
             .transpose()?;
         let ordering = match &blocked {

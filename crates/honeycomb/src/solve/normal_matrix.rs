@@ -207,12 +207,7 @@ impl NormalMatrix {
             "normal matrix too large for 32-bit slots"
         );
         let slot = |r: usize, c: usize| -> u32 {
-            let (r, c) = (r.min(c), r.max(c));
-            let range = col_ptr[c]..col_ptr[c + 1];
-            let pos = row_idx[range.clone()]
-                .binary_search(&r)
-                .expect("entry is in the pattern");
-            (range.start + pos) as u32
+            find_slot(&col_ptr, &row_idx, r, c).expect("entry is in the pattern") as u32
         };
         let diagonal = (0..n).map(|j| slot(j, j) as usize).collect();
         let mut longest = 0;
@@ -246,6 +241,43 @@ impl NormalMatrix {
         }
     }
 
+    /// A matrix of no families on an upper-triangular pattern (column-compressed, sorted rows,
+    /// the diagonal last in every column), its values zero: filled by its owner.
+    pub(super) fn with_pattern(n: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> NormalMatrix {
+        NormalMatrix {
+            n,
+            diagonal: (0..n).map(|j| col_ptr[j + 1] - 1).collect(),
+            values: vec![0.0; row_idx.len()],
+            col_ptr,
+            row_idx,
+            families: Vec::new(),
+            metric: None,
+            scratch: Vec::new(),
+        }
+    }
+
+    /// The value slots of the entries in `rows` (increasing, all in the pattern) of column `c`,
+    /// in one walk down the column.
+    pub(super) fn column_slots<'m>(
+        &'m self,
+        c: usize,
+        rows: impl Iterator<Item = usize> + 'm,
+    ) -> impl Iterator<Item = usize> + 'm {
+        let mut s = self.col_ptr[c];
+        rows.map(move |r| {
+            while self.row_idx[s] < r {
+                s += 1;
+            }
+            debug_assert_eq!(self.row_idx[s], r, "entry ({r}, {c}) is in the pattern");
+            s
+        })
+    }
+
+    /// The value slot of entry (r, c) or (c, r), if it is in the pattern.
+    pub(super) fn slot(&self, r: usize, c: usize) -> Option<usize> {
+        find_slot(&self.col_ptr, &self.row_idx, r, c)
+    }
+
     /// A matrix given by its upper triangle (column-compressed, sorted rows, the diagonal
     /// present), for testing the factorizations on small systems.
     #[cfg(test)]
@@ -257,16 +289,9 @@ impl NormalMatrix {
             values.extend(column.iter().map(|e| e.1));
             col_ptr.push(row_idx.len());
         }
-        NormalMatrix {
-            n,
-            diagonal: (0..n).map(|j| col_ptr[j + 1] - 1).collect(),
-            col_ptr,
-            row_idx,
-            values,
-            families: Vec::new(),
-            metric: None,
-            scratch: Vec::new(),
-        }
+        let mut m = NormalMatrix::with_pattern(n, col_ptr, row_idx);
+        m.values = values;
+        m
     }
 
     pub fn nnz(&self) -> usize {
@@ -312,6 +337,14 @@ impl NormalMatrix {
             self.values[d] += identity;
         }
     }
+}
+
+/// The slot of entry (r, c) or (c, r) in an upper-triangular pattern with sorted columns.
+fn find_slot(col_ptr: &[usize], row_idx: &[usize], r: usize, c: usize) -> Option<usize> {
+    let (r, c) = (r.min(c), r.max(c));
+    let range = col_ptr[c]..col_ptr[c + 1];
+    let pos = row_idx[range.clone()].binary_search(&r).ok()?;
+    Some(range.start + pos)
 }
 
 #[cfg(test)]
