@@ -348,20 +348,6 @@ mod tests {
         NormalMatrix::from_upper(n, &columns)
     }
 
-    fn multiply(m: &NormalMatrix, x: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; m.n];
-        for j in 0..m.n {
-            for k in m.col_ptr[j]..m.col_ptr[j + 1] {
-                let i = m.row_idx[k];
-                y[i] += m.values[k] * x[j];
-                if i != j {
-                    y[j] += m.values[k] * x[i];
-                }
-            }
-        }
-        y
-    }
-
     /// Blocks 0 (unknowns 0-2) and 1 (3-5) touch the unknowns 9-11 but not each other; block
     /// 2 (6-8) is coupled to block 0. Block 1 has a zero inside ((3, 5) is not in the pattern).
     fn example() -> NormalMatrix {
@@ -395,7 +381,8 @@ mod tests {
         let b: Vec<f64> = (0..12).map(|i| (i as f64 * 0.7).sin()).collect();
         let mut x = b.clone();
         c.solve_in_place(&mut cholesky, &mut x);
-        let residual = multiply(&m, &x)
+        let residual = m
+            .multiply(&x)
             .iter()
             .zip(&b)
             .fold(0.0f64, |w, (y, b)| w.max((y - b).abs()));

@@ -294,6 +294,22 @@ impl NormalMatrix {
         m
     }
 
+    /// `A x` with A symmetric from its upper triangle, for checking solves in tests.
+    #[cfg(test)]
+    pub(super) fn multiply(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.n];
+        for j in 0..self.n {
+            for k in self.col_ptr[j]..self.col_ptr[j + 1] {
+                let i = self.row_idx[k];
+                y[i] += self.values[k] * x[j];
+                if i != j {
+                    y[j] += self.values[k] * x[i];
+                }
+            }
+        }
+        y
+    }
+
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
     }

@@ -14,6 +14,19 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// Distinguishes the temporary files of concurrent writes from one process.
 static TEMP_COUNTER: AtomicUsize = AtomicUsize::new(0);
 
+/// A hidden name for a temporary `role` of `name` (`.NAME.ROLE-PID-K`), unique within this
+/// process and apart from other processes'.
+fn hidden(name: &std::ffi::OsStr, role: &str) -> OsString {
+    let mut hidden = OsString::from(".");
+    hidden.push(name);
+    hidden.push(format!(
+        ".{role}-{}-{}",
+        std::process::id(),
+        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    hidden
+}
+
 /// Runs `write` on a temporary file next to `path`, then renames it over `path`, so that readers
 /// see either the old file or the complete new one, never a partial write. On failure the
 /// temporary file is removed and `path` is left untouched.
@@ -48,15 +61,8 @@ impl Outputs {
         let name = path.file_name().ok_or_else(|| {
             Error::Parameter(format!("cannot write {}: not a file name", path.display()))
         })?;
-        let mut temp_name = OsString::from(".");
-        temp_name.push(name);
-        temp_name.push(format!(
-            ".tmp-{}-{}",
-            std::process::id(),
-            TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
-        ));
         // Same directory as the target: a rename is only atomic within one file system.
-        let temp = path.with_file_name(temp_name);
+        let temp = path.with_file_name(hidden(name, "tmp"));
         let written = (|| {
             let mut writer = BufWriter::new(File::create(&temp)?);
             write(&mut writer)?;
@@ -115,17 +121,10 @@ pub fn replace_folder(dir: &Path, fill: impl FnOnce(&Path) -> Result<()>) -> Res
             dir.display()
         )));
     };
-    let beside = |role: &str| {
-        let mut hidden = OsString::from(".");
-        hidden.push(name);
-        hidden.push(format!(
-            ".{role}-{}-{}",
-            std::process::id(),
-            TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
-        ));
-        parent.join(hidden)
-    };
-    let (temp, old) = (beside("saving"), beside("old"));
+    let (temp, old) = (
+        parent.join(hidden(name, "saving")),
+        parent.join(hidden(name, "old")),
+    );
     std::fs::create_dir_all(&temp).map_err(|e| io(&temp, e))?;
     let swapped = fill(&temp).and_then(|()| {
         if !dir.exists() {
