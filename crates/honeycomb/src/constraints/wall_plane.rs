@@ -4,6 +4,7 @@
 //! normal matrix is block diagonal (3 x 3 per vertex) and can be eliminated exactly.
 
 use super::layout::{put, triple, Layout};
+use crate::geometry::Vec3;
 use crate::solve::Constraint;
 
 pub struct WallPlane {
@@ -11,9 +12,11 @@ pub struct WallPlane {
     pub edges: Vec<[usize; 2]>,
     /// The unknown of each edge's offset.
     pub offsets: Vec<usize>,
-    /// A point per wall that the offset is measured from (the edge's first midpoint): offsets
-    /// from the origin would give a wall's turn a lever as long as the mesh is wide.
-    pub anchors: Vec<crate::geometry::Vec3>,
+    /// A point per wall that the offset is measured from (the edge's midpoint at the start):
+    /// offsets from the origin gave a wall's turn a lever as long as the mesh is wide, and
+    /// nodes flipped (omega_max 60 degrees after 5 iterations at 8.5k vertices, where the
+    /// anchored offsets give 3.5e-9).
+    pub anchors: Vec<Vec3>,
     pub weight: f64,
 }
 

@@ -38,15 +38,58 @@ struct Eliminated {
     first: usize,
     /// Its neighbours among the kept unknowns (indices of the rest).
     neighbours: Vec<usize>,
-    /// Slots in the whole matrix: `A_ee` (upper, packed by columns: 00 01 11 02 12 22), then
-    /// `A_eN` row by row.
-    /// `None`: an entry outside the pattern, which is zero.
+    /// Slots in the whole matrix of `A_ee` (upper, packed by columns: 00 01 11 02 12 22) and of
+    /// `A_eN` (row by row); `None` for an entry outside the pattern, which is zero.
     own: [Option<usize>; 6],
     coupling: Vec<Option<usize>>,
     /// The rest's slot of every neighbour pair (a <= b), column by column.
     pairs: Vec<usize>,
     /// Where its `W` starts in `Condensation::w`.
     w_start: usize,
+}
+
+impl Eliminated {
+    /// Where block `first..first + 3` and its `neighbours` (indices of the rest) find their
+    /// entries: in the whole matrix `m` (through `adjacent`, every unknown's neighbours with
+    /// their slots) and in the rest's `matrix`.
+    fn locate(
+        first: usize,
+        neighbours: Vec<usize>,
+        w_start: usize,
+        m: &NormalMatrix,
+        matrix: &NormalMatrix,
+        kept: &[usize],
+        adjacent: &Lists<(usize, usize)>,
+    ) -> Eliminated {
+        // An entry's slot from the short list of the unknown's neighbours.
+        let entry = |i: usize, k: usize| {
+            let near = adjacent.get(i);
+            near.iter().find(|&&(j, _)| j == k).map(|&(_, s)| s)
+        };
+        let own = [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2, 2)].map(|(r, c)| {
+            let (i, k) = (first + r, first + c);
+            if i == k {
+                m.slot(i, i)
+            } else {
+                entry(i, k)
+            }
+        });
+        let coupling = (0..B)
+            .flat_map(|c| neighbours.iter().map(move |&n| (first + c, n)))
+            .map(|(i, n)| entry(i, kept[n]))
+            .collect();
+        let pairs = (0..neighbours.len())
+            .flat_map(|b| matrix.column_slots(neighbours[b], neighbours[..=b].iter().copied()))
+            .collect();
+        Eliminated {
+            first,
+            neighbours,
+            own,
+            coupling,
+            pairs,
+            w_start,
+        }
+    }
 }
 
 impl Condensation {
@@ -128,38 +171,9 @@ impl Condensation {
         let blocks: Vec<Eliminated> = blocks
             .into_iter()
             .map(|(first, neighbours)| {
-                // An entry's slot from the short list of the unknown's neighbours.
-                let entry = |i: usize, k: usize| {
-                    let near = adjacent.get(i);
-                    near.iter().find(|&&(j, _)| j == k).map(|&(_, s)| s)
-                };
-                let own = [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2, 2)].map(|(r, c)| {
-                    let (i, k) = (first + r, first + c);
-                    if i == k {
-                        m.slot(i, i)
-                    } else {
-                        entry(i, k)
-                    }
-                });
-                let coupling = (0..B)
-                    .flat_map(|c| neighbours.iter().map(move |&n| (first + c, n)))
-                    .map(|(i, n)| entry(i, kept[n]))
-                    .collect();
-                let pairs = (0..neighbours.len())
-                    .flat_map(|b| {
-                        matrix.column_slots(neighbours[b], neighbours[..=b].iter().copied())
-                    })
-                    .collect();
                 let w_start = w_len;
                 w_len += B * neighbours.len();
-                Eliminated {
-                    first,
-                    neighbours,
-                    own,
-                    coupling,
-                    pairs,
-                    w_start,
-                }
+                Eliminated::locate(first, neighbours, w_start, m, &matrix, &kept, &adjacent)
             })
             .collect();
         Some(Condensation {
