@@ -96,21 +96,27 @@ impl Condensation {
     /// Eliminates the `candidates` (blocks of three unknowns) that no earlier accepted
     /// candidate is coupled to; `None` if none is accepted.
     pub fn analyse(m: &NormalMatrix, candidates: &[usize]) -> Option<Condensation> {
-        // Every unknown's neighbours in the whole matrix (both triangles), with the slot of
-        // their entry.
+        let mut candidate = vec![false; m.n.div_ceil(B)];
+        for &b in candidates.iter().filter(|&&b| B * b + B <= m.n) {
+            candidate[b] = true;
+        }
+        // Every candidate unknown's neighbours in the whole matrix (both triangles), with the
+        // slot of their entry.
         let adjacent = Lists::build(m.n, |visit| {
             for j in 0..m.n {
                 for s in m.col_ptr[j]..m.col_ptr[j + 1] {
                     let i = m.row_idx[s];
-                    if i != j {
+                    if i != j && candidate[i / B] {
                         visit(i, (j, s));
+                    }
+                    if i != j && candidate[j / B] {
                         visit(j, (i, s));
                     }
                 }
             }
         });
         let mut eliminated = vec![false; m.n.div_ceil(B)];
-        for &b in candidates.iter().filter(|&&b| B * b + B <= m.n) {
+        for &b in candidates.iter().filter(|&&b| candidate.get(b) == Some(&true)) {
             let coupled = (B * b..B * b + B)
                 .flat_map(|i| adjacent.get(i))
                 .any(|&(k, _)| k / B != b && eliminated[k / B]);
@@ -140,10 +146,10 @@ impl Condensation {
         // The rest's pattern (upper): its own entries and every eliminated block's neighbours
         // pairwise, then each column sorted without repeats.
         let mut columns = Lists::build(kept.len(), |visit| {
-            for (r, &whole) in kept.iter().enumerate() {
-                visit(r, r);
-                for &(i, _) in adjacent.get(whole) {
-                    if index[i] < r {
+            // A kept column's entries between kept unknowns (the numbering keeps their order).
+            for (r, &j) in kept.iter().enumerate() {
+                for &i in &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]] {
+                    if index[i] != usize::MAX {
                         visit(r, index[i]);
                     }
                 }
