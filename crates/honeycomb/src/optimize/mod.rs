@@ -22,7 +22,7 @@ pub use quads::{QuadOptions, QuadPattern};
 pub use variants::{shading_axes, unit_light, AxesOptions, ParallelOptions};
 pub use weights::Weights;
 
-use problem::wall_planes;
+pub(crate) use problem::wall_planes;
 
 use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,

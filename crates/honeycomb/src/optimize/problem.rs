@@ -85,7 +85,7 @@ pub fn min_edge_family(mesh: &PolyMesh, conn: &Connectivity, length: f64) -> Min
 /// Every edge's wall plane with an offset of its own ([`WallPlane`]), measured from the edge's
 /// midpoint in `x` (laid out as [`Layout`] first); the offsets, one unknown per edge, are
 /// appended to `x`.
-pub(super) fn wall_planes(
+pub(crate) fn wall_planes(
     mesh: &PolyMesh,
     conn: &Connectivity,
     x: &mut Vec<f64>,

@@ -116,7 +116,10 @@ impl Condensation {
             }
         });
         let mut eliminated = vec![false; m.n.div_ceil(B)];
-        for &b in candidates.iter().filter(|&&b| candidate.get(b) == Some(&true)) {
+        for &b in candidates
+            .iter()
+            .filter(|&&b| candidate.get(b) == Some(&true))
+        {
             let coupled = (B * b..B * b + B)
                 .flat_map(|i| adjacent.get(i))
                 .any(|&(k, _)| k / B != b && eliminated[k / B]);

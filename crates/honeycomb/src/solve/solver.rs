@@ -135,6 +135,18 @@ impl<'a> GuidedProjection<'a> {
         Self::build(n, families, positions, None, &[])
     }
 
+    /// As [`GuidedProjection::with_positions`], eliminating the blocks of three unknowns in
+    /// `eliminable` that no other of them is coupled to before each factorization (see
+    /// `condensation.rs`): the same step from a smaller factorization.
+    pub fn eliminating(
+        n: usize,
+        families: Vec<Box<dyn Constraint + 'a>>,
+        positions: Option<&[Option<Vec3>]>,
+        eliminable: &[usize],
+    ) -> Result<Self> {
+        Self::build(n, families, positions, None, eliminable)
+    }
+
     /// A solver over the unknowns y of `substitution`: the families see `S y`. `positions`
     /// are per block of three unknowns of y. The blocks of three unknowns in `eliminable`
     /// that no other of them is coupled to are eliminated exactly before each factorization
