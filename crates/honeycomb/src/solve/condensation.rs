@@ -10,6 +10,7 @@
 //! rest has half the operations of the whole.
 
 use super::cholesky::{not_positive, Cholesky};
+use super::lists::Lists;
 use super::normal_matrix::NormalMatrix;
 use crate::error::Result;
 
@@ -148,7 +149,7 @@ impl Condensation {
             .collect();
         // The rest's pattern (upper): its own entries and every eliminated block's neighbours
         // pairwise, then each column sorted without repeats.
-        let mut columns = Lists::build(kept.len(), |visit| {
+        let columns = Lists::build(kept.len(), |visit| {
             // A kept column's entries between kept unknowns (the numbering keeps their order).
             for (r, &j) in kept.iter().enumerate() {
                 for &i in &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]] {
@@ -267,54 +268,6 @@ impl Condensation {
             let x = backward(&self.l[k], t);
             b[e.first..e.first + B].copy_from_slice(&x);
         }
-    }
-}
-
-/// Lists in one flat array: list k is `items[start[k]..start[k + 1]]`.
-struct Lists<T> {
-    start: Vec<usize>,
-    items: Vec<T>,
-}
-
-impl<T: Copy + Default + Ord> Lists<T> {
-    /// `count` lists of the items `each` visits as (list, item); `each` runs twice (to count,
-    /// then to place), which spares a vector per list.
-    fn build(count: usize, each: impl Fn(&mut dyn FnMut(usize, T))) -> Lists<T> {
-        let mut start = vec![0usize; count + 1];
-        each(&mut |k, _| start[k + 1] += 1);
-        for k in 0..count {
-            start[k + 1] += start[k];
-        }
-        let mut items = vec![T::default(); start[count]];
-        let mut next = start[..count].to_vec();
-        each(&mut |k, item| {
-            items[next[k]] = item;
-            next[k] += 1;
-        });
-        Lists { start, items }
-    }
-
-    fn get(&self, k: usize) -> &[T] {
-        &self.items[self.start[k]..self.start[k + 1]]
-    }
-
-    /// Every list sorted and without repeats, compressed: (starts, items).
-    fn sorted_unique(&mut self) -> (Vec<usize>, Vec<T>) {
-        let mut start = Vec::with_capacity(self.start.len());
-        let mut items = Vec::with_capacity(self.items.len());
-        start.push(0);
-        for k in 0..self.start.len() - 1 {
-            let list = &mut self.items[self.start[k]..self.start[k + 1]];
-            list.sort_unstable();
-            let first = items.len();
-            for &i in list.iter() {
-                if items.len() == first || items[items.len() - 1] != i {
-                    items.push(i);
-                }
-            }
-            start.push(items.len());
-        }
-        (start, items)
     }
 }
 

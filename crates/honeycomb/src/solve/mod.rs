@@ -5,6 +5,7 @@ mod cholesky;
 mod condensation;
 mod constraint;
 mod dissection;
+mod lists;
 mod normal_matrix;
 mod ordering;
 mod solver;

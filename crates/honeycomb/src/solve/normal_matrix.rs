@@ -7,6 +7,7 @@
 //! variables become the union of their terms, and each Jacobian entry is spread over those.
 
 use super::constraint::Constraint;
+use super::lists::Lists;
 use super::substitution::Substitution;
 
 /// One family's rows over the solver's unknowns.
@@ -155,53 +156,26 @@ impl NormalMatrix {
             .map(|c| MappedRows::new(c.as_ref(), subst))
             .chain(subst.map(MappedRows::of_substitution))
             .collect();
-        // The upper-triangular entries column by column, in one flat array: count, place,
-        // then sort and deduplicate each column (no per-column allocations).
-        let each_pair = |visit: &mut dyn FnMut(usize, usize)| {
+        // The upper-triangular entries column by column (the diagonal and every pair of a
+        // row's unknowns), each column sorted without repeats.
+        let (col_ptr, row_idx) = Lists::build(n, |visit| {
+            for j in 0..n {
+                visit(j, j);
+            }
             for m in &mapped {
                 for r in 0..m.rows() {
                     let chunk = m.row(r);
                     for &a in chunk {
                         for &b in chunk {
                             if a < b {
-                                visit(a, b);
+                                visit(b, a);
                             }
                         }
                     }
                 }
             }
-        };
-        let mut start = vec![0usize; n + 1];
-        each_pair(&mut |_, b| start[b + 1] += 1);
-        for j in 0..n {
-            start[j + 1] += start[j] + 1; // + the diagonal
-        }
-        let mut entries = vec![0usize; start[n]];
-        let mut fill: Vec<usize> = start[..n].to_vec();
-        for (j, f) in fill.iter_mut().enumerate() {
-            entries[*f] = j;
-            *f += 1;
-        }
-        each_pair(&mut |a, b| {
-            entries[fill[b]] = a;
-            fill[b] += 1;
-        });
-        drop(fill);
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::with_capacity(entries.len());
-        col_ptr.push(0);
-        for j in 0..n {
-            let col = &mut entries[start[j]..start[j + 1]];
-            col.sort_unstable();
-            let first = row_idx.len();
-            for &r in col.iter() {
-                if row_idx.len() == first || row_idx[row_idx.len() - 1] != r {
-                    row_idx.push(r);
-                }
-            }
-            col_ptr.push(row_idx.len());
-        }
-        drop(entries);
+        })
+        .sorted_unique();
         assert!(
             row_idx.len() < u32::MAX as usize,
             "normal matrix too large for 32-bit slots"
