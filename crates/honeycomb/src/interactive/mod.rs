@@ -13,12 +13,12 @@ mod spread;
 
 pub use spread::{damping, rings, rotate, spread_turn};
 
-use crate::constraints::{AxisTargets, Layout, SharedTargets, VertexTargets, WallConsistency};
+use crate::constraints::{AxisTargets, Layout, SharedTargets, VertexTargets};
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::optimize::{
-    block_positions, check_thickness, families, initial_normals, wall_planes, Frame, Weights,
+    block_positions, check_thickness, families, initial_normals, use_wall_planes, Frame, Weights,
 };
 use crate::solve::{GuidedProjection, IterationInfo, SolveState, SolverOptions};
 use crate::structure::{measure, node_axes, Honeycomb, Measures};
@@ -249,12 +249,15 @@ impl<'a> EditSession<'a> {
             &solver_options,
             &mut |_| {},
         )?;
-        // The edits' walls are planes with offsets (appended to x), so that no row touches two
-        // vertices and the solver eliminates them before it factors: a step at 8.8k vertices
-        // then factors half the operations.
-        fams.retain(|f| f.name() != WallConsistency::NAME);
-        let planes = wall_planes(&ws.base, &ws.conn, &mut x, options.weights.consistency);
-        fams.push(Box::new(planes));
+        // The edits' walls are planes with offsets, so the solver eliminates the vertices
+        // before it factors: a step at 8.8k vertices then factors half the operations.
+        use_wall_planes(
+            &mut fams,
+            &ws.base,
+            &ws.conn,
+            &mut x,
+            options.weights.consistency,
+        );
         let blocks = block_positions(&ws.base, &ws.conn, x.len());
         let vertices: Vec<usize> = (0..nv).collect();
         let solver = GuidedProjection::eliminating(x.len(), fams, Some(&blocks), &vertices)?;

@@ -22,11 +22,11 @@ pub use quads::{QuadOptions, QuadPattern};
 pub use variants::{shading_axes, unit_light, AxesOptions, ParallelOptions};
 pub use weights::Weights;
 
-pub(crate) use problem::wall_planes;
+pub(crate) use problem::use_wall_planes;
 
 use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
-    PrescribedAxes, WallConsistency,
+    PrescribedAxes,
 };
 use crate::error::{short_number, Error, Result};
 use crate::geometry::Vec3;
@@ -357,11 +357,7 @@ impl<'a> Problem<'a> {
             )
         });
         if options.wall_normals == WallNormals::CellPoints {
-            // Both ends on the wall's plane instead of the edge in it: no row then couples two
-            // vertices, and the solver eliminates the vertices before it factors.
-            families.retain(|f| f.name() != WallConsistency::NAME);
-            let planes = wall_planes(mesh, conn, &mut x, weights.consistency);
-            families.push(Box::new(planes));
+            use_wall_planes(&mut families, mesh, conn, &mut x, weights.consistency);
         }
         Problem {
             layout,
@@ -401,7 +397,7 @@ pub fn optimize(
     let solve = if options.wall_normals == WallNormals::CellPoints {
         let d = dual_normals::dual_normals(&mesh, &conn, layout, &x)?;
         let mut y = d.y;
-        // The vertices' blocks, which no row couples (see `wall_planes`).
+        // The vertices' blocks, which no row couples (see `use_wall_planes`).
         let vertices: Vec<usize> = (0..layout.num_vertices).collect();
         let mut solver = GuidedProjection::with_substitution(
             problem.families,

@@ -82,15 +82,23 @@ pub fn min_edge_family(mesh: &PolyMesh, conn: &Connectivity, length: f64) -> Min
     MinEdgeLength::new(layout, conn.edges.clone(), length, layout.len(), 1.0)
 }
 
-/// Every edge's wall plane with an offset of its own ([`WallPlane`]), measured from the edge's
-/// midpoint in `x` (laid out as [`Layout`] first); the offsets, one unknown per edge, are
-/// appended to `x`.
-pub(crate) fn wall_planes(
+/// Puts every edge's wall plane with an offset of its own ([`WallPlane`]) among `families` in
+/// place of the wall consistency: both ends on the wall's plane instead of the edge in it, so
+/// that no row couples two vertices and the solver can eliminate the vertices before it
+/// factors. The offsets, one unknown per edge measured from the edge's midpoint in `x` (laid
+/// out as [`Layout`] first), are appended to `x`.
+pub(crate) fn use_wall_planes<'a>(
+    families: &mut Vec<Box<dyn Constraint + 'a>>,
     mesh: &PolyMesh,
     conn: &Connectivity,
     x: &mut Vec<f64>,
     weight: f64,
-) -> WallPlane {
+) {
+    families.retain(|f| f.name() != WallConsistency::NAME);
+    families.push(Box::new(wall_planes(mesh, conn, x, weight)));
+}
+
+fn wall_planes(mesh: &PolyMesh, conn: &Connectivity, x: &mut Vec<f64>, weight: f64) -> WallPlane {
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
     let anchors = conn
         .edges
