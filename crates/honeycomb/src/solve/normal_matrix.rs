@@ -268,9 +268,10 @@ impl NormalMatrix {
         m
     }
 
-    /// `A x` with A symmetric from its upper triangle, for checking solves in tests.
+    /// The largest entry of `A x - b` (A symmetric, from its upper triangle), for checking
+    /// solves in tests.
     #[cfg(test)]
-    pub(super) fn multiply(&self, x: &[f64]) -> Vec<f64> {
+    pub(super) fn residual(&self, x: &[f64], b: &[f64]) -> f64 {
         let mut y = vec![0.0; self.n];
         for j in 0..self.n {
             for k in self.col_ptr[j]..self.col_ptr[j + 1] {
@@ -281,7 +282,9 @@ impl NormalMatrix {
                 }
             }
         }
-        y
+        y.iter()
+            .zip(b)
+            .fold(0.0f64, |m, (y, b)| m.max((y - b).abs()))
     }
 
     pub fn nnz(&self) -> usize {

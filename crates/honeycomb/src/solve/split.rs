@@ -498,11 +498,7 @@ mod tests {
             split.factorize(&matrix).unwrap();
             let mut xs = rhs.clone();
             split.solve_in_place(&mut xs);
-            let residual = matrix
-                .multiply(&xs)
-                .iter()
-                .zip(&rhs)
-                .fold(0.0f64, |m, (y, b)| m.max((y - b).abs()));
+            let residual = matrix.residual(&xs, &rhs);
             assert!(
                 residual < 1e-10 * scale,
                 "residual {residual} (copied: {copied})"
@@ -567,11 +563,7 @@ mod tests {
             split.factorize(&matrix).unwrap();
             let mut x = rhs;
             split.solve_in_place(&mut x);
-            let residual = matrix
-                .multiply(&x)
-                .iter()
-                .zip(&rhs)
-                .fold(0.0f64, |m, (y, b)| m.max((y - b).abs()));
+            let residual = matrix.residual(&x, &rhs);
             assert!(
                 residual < 1e-14,
                 "{halves:?} {separator:?}: residual {residual}"
