@@ -156,51 +156,13 @@ impl NormalMatrix {
             .map(|c| MappedRows::new(c.as_ref(), subst))
             .chain(subst.map(MappedRows::of_substitution))
             .collect();
-        // The upper-triangular entries column by column (the diagonal and every pair of a
-        // row's unknowns), each column sorted without repeats.
-        let (col_ptr, row_idx) = Lists::build(n, |visit| {
-            for j in 0..n {
-                visit(j, j);
-            }
-            for m in &mapped {
-                for r in 0..m.rows() {
-                    let chunk = m.row(r);
-                    for &a in chunk {
-                        for &b in chunk {
-                            if a < b {
-                                visit(b, a);
-                            }
-                        }
-                    }
-                }
-            }
-        })
-        .sorted_unique();
-        assert!(
-            row_idx.len() < u32::MAX as usize,
-            "normal matrix too large for 32-bit slots"
-        );
-        let slot = |r: usize, c: usize| -> u32 {
-            find_slot(&col_ptr, &row_idx, r, c).expect("entry is in the pattern") as u32
-        };
-        let diagonal = (0..n).map(|j| slot(j, j) as usize).collect();
-        let mut longest = 0;
-        for m in &mut mapped {
-            let mut slots = Vec::new();
-            let mut slot_start = Vec::with_capacity(m.rows() + 1);
-            slot_start.push(0);
-            for r in 0..m.rows() {
-                let row = m.row(r);
-                longest = longest.max(row.len());
-                for a in 0..row.len() {
-                    for b in a..row.len() {
-                        slots.push(slot(row[a], row[b]));
-                    }
-                }
-                slot_start.push(slots.len());
-            }
-            (m.slots, m.slot_start) = (slots, slot_start);
-        }
+        let (col_ptr, row_idx) = pattern(n, &mut mapped);
+        let diagonal = (1..=n).map(|j| col_ptr[j] - 1).collect();
+        let longest = mapped
+            .iter()
+            .flat_map(|m| (0..m.rows()).map(|r| m.row(r).len()))
+            .max()
+            .unwrap_or(0);
         let metric = subst.and_then(|s| Some((mapped.pop()?, vec![1.0; s.x_len()])));
         let nnz = row_idx.len();
         NormalMatrix {
@@ -332,6 +294,88 @@ impl NormalMatrix {
     }
 }
 
+/// The upper-triangular pattern, column-compressed with sorted rows (the diagonal last), of
+/// the diagonal and every pair of unknowns that share a row; fills in every row's value slots.
+///
+/// Column by column: the rows that hold the column's unknown are visited, and a mark per
+/// unknown finds the slot of an entry already made in this column, so no pair is searched
+/// for. Each column is sorted once at the end and the slots renumbered to match.
+fn pattern(n: usize, mapped: &mut [MappedRows]) -> (Vec<usize>, Vec<usize>) {
+    // Every row of every family, and where each unknown occurs: (row, position in it).
+    let rows: Vec<(u32, u32)> = (0..mapped.len())
+        .flat_map(|f| (0..mapped[f].rows()).map(move |r| (f as u32, r as u32)))
+        .collect();
+    assert!(rows.len() < u32::MAX as usize, "too many rows");
+    let occurrences = Lists::build(n, |visit| {
+        for (g, &(f, r)) in rows.iter().enumerate() {
+            for (p, &v) in mapped[f as usize].row(r as usize).iter().enumerate() {
+                visit(v, (g as u32, p as u32));
+            }
+        }
+    });
+    for m in mapped.iter_mut() {
+        let mut slot_start = Vec::with_capacity(m.rows() + 1);
+        slot_start.push(0);
+        for r in 0..m.rows() {
+            let k = m.row(r).len();
+            slot_start.push(slot_start[r] + k * (k + 1) / 2);
+        }
+        m.slots = vec![0; slot_start[m.rows()]];
+        m.slot_start = slot_start;
+    }
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    col_ptr.push(0);
+    let mut row_idx: Vec<usize> = Vec::new();
+    // marked[a] == b + 1: unknown a has its entry of column b at slot slot_of[a].
+    let (mut marked, mut slot_of) = (vec![0usize; n], vec![0usize; n]);
+    // Slot in the order of first use → slot in the sorted column.
+    let mut renumbered: Vec<u32> = Vec::new();
+    for b in 0..n {
+        let start = row_idx.len();
+        for &(g, pb) in occurrences.get(b) {
+            let (f, r) = rows[g as usize];
+            let m = &mut mapped[f as usize];
+            let (r, pb) = (r as usize, pb as usize);
+            let vars = &m.vars[m.var_start[r]..m.var_start[r + 1]];
+            let first = m.slot_start[r];
+            for (pa, &a) in vars.iter().enumerate().filter(|&(_, &a)| a <= b) {
+                if marked[a] != b + 1 {
+                    marked[a] = b + 1;
+                    slot_of[a] = row_idx.len();
+                    row_idx.push(a);
+                }
+                m.slots[first + pair_index(pa.min(pb), pa.max(pb), vars.len())] = slot_of[a] as u32;
+            }
+        }
+        if marked[b] != b + 1 {
+            slot_of[b] = row_idx.len();
+            row_idx.push(b);
+        }
+        assert!(
+            row_idx.len() < u32::MAX as usize,
+            "normal matrix too large for 32-bit slots"
+        );
+        row_idx[start..].sort_unstable();
+        renumbered.resize(row_idx.len(), 0);
+        for s in start..row_idx.len() {
+            renumbered[slot_of[row_idx[s]]] = s as u32;
+        }
+        col_ptr.push(row_idx.len());
+    }
+    for m in mapped.iter_mut() {
+        for s in &mut m.slots {
+            *s = renumbered[*s as usize];
+        }
+    }
+    (col_ptr, row_idx)
+}
+
+/// The place of pair (p, q), p <= q, among the pairs of a row of `k` unknowns listed as
+/// (0, 0), (0, 1), .., (0, k - 1), (1, 1), ..
+fn pair_index(p: usize, q: usize, k: usize) -> usize {
+    p * k - p * (p + 1) / 2 + q
+}
+
 /// The slot of entry (r, c) or (c, r) in an upper-triangular pattern with sorted columns.
 fn find_slot(col_ptr: &[usize], row_idx: &[usize], r: usize, c: usize) -> Option<usize> {
     let (r, c) = (r.min(c), r.max(c));
@@ -430,6 +474,78 @@ mod tests {
                     (got - expected).abs() < 1e-12,
                     "entry ({a}, {b}): {got} vs {expected}"
                 );
+            }
+        }
+    }
+
+    /// Rows over listed unknowns (any order), each residual 0 and every Jacobian entry 1.
+    struct Listed(Vec<Vec<usize>>);
+
+    impl Constraint for Listed {
+        fn name(&self) -> &str {
+            "listed"
+        }
+        fn weight(&self) -> f64 {
+            1.0
+        }
+        fn num_rows(&self) -> usize {
+            self.0.len()
+        }
+        fn arity(&self) -> usize {
+            self.0[0].len()
+        }
+        fn row_variables(&self, row: usize, vars: &mut [usize]) {
+            vars.copy_from_slice(&self.0[row]);
+        }
+        fn evaluate(&self, _x: &[f64], residuals: &mut [f64], jacobian: &mut [f64]) {
+            residuals.fill(0.0);
+            jacobian.fill(1.0);
+        }
+    }
+
+    /// The pattern holds exactly the diagonal and the pairs that share a row, each column
+    /// sorted with the diagonal last, and every row adds into the slots of its own pairs: with
+    /// unit Jacobians entry (a, b) counts the rows that hold both.
+    #[test]
+    fn the_pattern_has_every_shared_pair_once_and_rows_find_their_slots() {
+        let n = 9;
+        let lists = [
+            vec![vec![4, 1, 7], vec![0, 8, 2], vec![7, 4, 3], vec![2, 0, 8]],
+            vec![vec![5, 1], vec![1, 5], vec![6, 0]],
+        ];
+        let families: Vec<Box<dyn Constraint>> = lists
+            .iter()
+            .map(|rows| Box::new(Listed(rows.clone())) as Box<dyn Constraint>)
+            .collect();
+        // count[b][a]: the rows holding both a and b (a <= b).
+        let mut count = vec![vec![0.0; n]; n];
+        for row in lists.iter().flatten() {
+            for (p, &a) in row.iter().enumerate() {
+                for &b in &row[p..] {
+                    count[a.max(b)][a.min(b)] += 1.0;
+                }
+            }
+        }
+        let mut m = NormalMatrix::new(n, &families, None);
+        let mut rhs = vec![0.0; n];
+        m.clear(&mut rhs);
+        for (f, c) in families.iter().enumerate() {
+            let mut phi = vec![0.0; c.num_rows()];
+            let mut jac = vec![0.0; c.num_rows() * c.arity()];
+            c.evaluate(&[], &mut phi, &mut jac);
+            m.add_family(f, 1.0, &phi, &jac, &mut rhs);
+        }
+        for (b, counts) in count.iter().enumerate() {
+            let column = &m.row_idx[m.col_ptr[b]..m.col_ptr[b + 1]];
+            let expected: Vec<usize> = (0..b).filter(|&a| counts[a] > 0.0).chain([b]).collect();
+            assert_eq!(
+                column,
+                &expected[..],
+                "column {b}: sorted, the diagonal last"
+            );
+            for (k, &a) in column.iter().enumerate() {
+                let value = m.values[m.col_ptr[b] + k];
+                assert_eq!(value, counts[a], "entry ({a}, {b})");
             }
         }
     }
