@@ -57,9 +57,13 @@ impl Workspace {
         let thickness = thickness.unwrap_or(0.3 * frame.unit);
         check_thickness(thickness)?;
         let surface_mesh = surface.unwrap_or(base);
-        let model_surface = Surface::from_mesh(surface_mesh)?;
+        // S in model units (for the measures) and in the solver's frame, one on each thread.
+        let (model_surface, surface) = crate::parallel::both(
+            || Surface::from_mesh(surface_mesh),
+            || Surface::from_mesh(&frame.to_normalized(surface_mesh)),
+        );
+        let (model_surface, surface) = (model_surface?, surface?);
         let normalized = frame.to_normalized(base);
-        let surface = Surface::from_mesh(&frame.to_normalized(surface_mesh))?;
         let normals = initial_normals(&normalized, &conn, &surface);
         Ok(Workspace {
             frame,

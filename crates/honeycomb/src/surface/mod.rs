@@ -65,12 +65,22 @@ impl Surface {
     pub fn from_mesh(mesh: &PolyMesh) -> Result<Surface> {
         validate(mesh)?;
         let (vertices, mut triangles) = mesh.star_triangulated();
-        let boundary_edges = orient::orient(&mut triangles)?;
-
-        let bvh = Bvh::build(&mut triangles, |tri| {
-            let [a, b, c] = tri.map(|v| vertices[v]);
-            (a.min(b).min(c), a.max(b).max(c))
-        });
+        // The tree needs only the triangles' boxes, which orienting (a change of winding)
+        // keeps: it is built beside the orientation, over triangle indices.
+        let unoriented = triangles.clone();
+        let ((bvh, order), oriented) = crate::parallel::both(
+            || {
+                let mut order: Vec<usize> = (0..unoriented.len()).collect();
+                let bvh = Bvh::build(&mut order, |&t| {
+                    let [a, b, c] = unoriented[t].map(|v| vertices[v]);
+                    (a.min(b).min(c), a.max(b).max(c))
+                });
+                (bvh, order)
+            },
+            || orient::orient(&mut triangles),
+        );
+        let boundary_edges = oriented?;
+        let triangles: Vec<[usize; 3]> = order.iter().map(|&t| triangles[t]).collect();
         let corners = triangles.iter().map(|t| t.map(|v| vertices[v])).collect();
         let mut face_normals = normals::face_normals(&vertices, &triangles);
         let vertex_normals = normals::vertex_normals(&vertices, &triangles, &face_normals);
