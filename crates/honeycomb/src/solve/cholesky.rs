@@ -13,7 +13,7 @@ use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
-    SymmetricOrdering,
+    SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
@@ -83,7 +83,7 @@ impl Cholesky {
     }
 
     /// Numeric factorization of the matrix's current values.
-    pub fn factorize(&mut self, matrix: &NormalMatrix) -> Result<()> {
+    pub fn factorize(&mut self, matrix: &NormalMatrix) -> std::result::Result<(), NotPositive> {
         match self {
             Cholesky::Whole(c) => c.factorize(matrix),
             Cholesky::Split(c) => c.factorize(matrix),
@@ -135,7 +135,7 @@ impl SparseFactor {
     }
 
     /// Numeric factorization of `a` (upper triangle, on the analysed pattern). Err: the
-    /// elimination position of the first pivot that is not positive.
+    /// elimination position (from 0) of the first pivot that is not positive.
     pub(super) fn factorize(
         &mut self,
         a: SparseColMatRef<'_, usize, f64>,
@@ -151,7 +151,14 @@ impl SparseFactor {
                 Default::default(),
             )
             .map(|_| ())
-            .map_err(|LltError::NonPositivePivot { index }| index)
+            .map_err(|LltError::NonPositivePivot { index }| {
+                // faer 0.24 counts a simplicial factor's pivots from 1, a supernodal one's
+                // from 0.
+                match self.symbolic.raw() {
+                    SymbolicCholeskyRaw::Simplicial(_) => index - 1,
+                    SymbolicCholeskyRaw::Supernodal(_) => index,
+                }
+            })
     }
 }
 
@@ -183,14 +190,12 @@ impl WholeCholesky {
     }
 
     /// Numeric factorization of the matrix's current values.
-    pub fn factorize(&mut self, matrix: &NormalMatrix) -> Result<()> {
+    pub fn factorize(&mut self, matrix: &NormalMatrix) -> std::result::Result<(), NotPositive> {
         self.has_factor = false;
         let a = SparseColMatRef::new(pattern_of(matrix), &matrix.values);
-        self.factor.factorize(a).map_err(|index| {
-            // faer counts pivots in elimination order.
+        self.factor.factorize(a).map_err(|position| {
             let symbolic = &self.factor.symbolic;
-            let unknown = symbolic.perm().map_or(index, |p| p.arrays().0[index]);
-            not_positive(unknown, matrix.n)
+            NotPositive(symbolic.perm().map_or(position, |p| p.arrays().0[position]))
         })?;
         self.has_factor = true;
         Ok(())
@@ -217,14 +222,62 @@ fn parallelism() -> Par {
     Par::Seq
 }
 
-/// The error of a factorization that met a pivot that is not positive, at `unknown` of `n`.
-pub(super) fn not_positive(unknown: usize, n: usize) -> Error {
-    Error::Solver(format!(
-        "the linearized system is not positive definite (pivot at unknown {unknown} of {n}); \
-         try a larger regularization (--eps)"
-    ))
+/// A factorization met a pivot that is not positive, at this unknown of the matrix it
+/// factored (whose owner knows what that unknown is in the whole system).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NotPositive(pub usize);
+
+impl NotPositive {
+    /// The error for the user, the unknown one of `n` in the whole system.
+    pub fn error(self, n: usize) -> Error {
+        Error::Solver(format!(
+            "the linearized system is not positive definite (pivot at unknown {} of {n}); \
+             try a larger regularization (--eps)",
+            self.0
+        ))
+    }
 }
 
 fn pattern_of(m: &NormalMatrix) -> SymbolicSparseColMatRef<'_, usize> {
     SymbolicSparseColMatRef::new_checked(m.n, m.n, &m.col_ptr, None, &m.row_idx)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// n unknowns, each coupled to the next `band` ones (0.1 / band each), diagonal 1 (`bad`
+    /// at unknown `at`).
+    fn banded(n: usize, band: usize, at: usize, bad: f64) -> NormalMatrix {
+        let columns: Vec<Vec<(usize, f64)>> = (0..n)
+            .map(|c| {
+                let above = (c.saturating_sub(band)..c).map(|r| (r, 0.1 / band as f64));
+                above
+                    .chain([(c, if c == at { bad } else { 1.0 })])
+                    .collect()
+            })
+            .collect();
+        let columns: Vec<&[(usize, f64)]> = columns.iter().map(|c| &c[..]).collect();
+        NormalMatrix::from_upper(n, &columns)
+    }
+
+    /// faer counts the pivots of a simplicial factor from 1 and of a supernodal one from 0;
+    /// both name the unknown itself.
+    #[test]
+    fn a_pivot_that_is_not_positive_is_named_by_its_unknown_in_either_kind_of_factor() {
+        // Tridiagonal: simplicial; dense: supernodal.
+        for (band, supernodal) in [(1, false), (300, true)] {
+            let m = banded(300, band, 37, -1.0);
+            let mut c = WholeCholesky::analyse(&m, 1, None).unwrap();
+            let raw = c.factor.symbolic.raw();
+            assert_eq!(
+                matches!(raw, SymbolicCholeskyRaw::Supernodal(_)),
+                supernodal,
+                "band {band}"
+            );
+            assert_eq!(c.factorize(&m), Err(NotPositive(37)), "band {band}");
+            let good = banded(300, band, 37, 1.0);
+            assert_eq!(c.factorize(&good), Ok(()), "band {band}");
+        }
+    }
 }

@@ -9,10 +9,9 @@
 //! such blocks; on a honeycomb they are half of all unknowns, and the factorization of the
 //! rest has half the operations of the whole.
 
-use super::cholesky::{not_positive, Cholesky};
+use super::cholesky::{Cholesky, NotPositive};
 use super::lists::Lists;
 use super::normal_matrix::NormalMatrix;
-use crate::error::Result;
 
 const B: usize = 3;
 
@@ -203,8 +202,21 @@ impl Condensation {
         &self.kept
     }
 
+    /// Factors the whole matrix's current values: condenses them into the rest and factors
+    /// that in `cholesky`. A pivot that is not positive is named in the whole system.
+    pub fn factorize(
+        &mut self,
+        whole: &NormalMatrix,
+        cholesky: &mut Cholesky,
+    ) -> Result<(), NotPositive> {
+        self.condense(whole)?;
+        cholesky
+            .factorize(&self.matrix)
+            .map_err(|NotPositive(r)| NotPositive(self.kept[r]))
+    }
+
     /// The rest's matrix for the whole matrix's current values.
-    pub fn condense(&mut self, whole: &NormalMatrix) -> Result<()> {
+    fn condense(&mut self, whole: &NormalMatrix) -> Result<(), NotPositive> {
         let values = &mut self.matrix.values;
         values.fill(0.0);
         for &(from, to) in &self.copies {
@@ -213,7 +225,7 @@ impl Condensation {
         for (k, e) in self.blocks.iter().enumerate() {
             let value = |s: Option<usize>| s.map_or(0.0, |s| whole.values[s]);
             let a = e.own.map(value);
-            let l = cholesky3(&a).map_err(|c| not_positive(e.first + c, whole.n))?;
+            let l = cholesky3(&a).map_err(|c| NotPositive(e.first + c))?;
             self.l[k] = l;
             let n = e.neighbours.len();
             let w = &mut self.w[e.w_start..e.w_start + B * n];
@@ -273,7 +285,7 @@ impl Condensation {
 
 /// Cholesky factor of a symmetric 3 x 3 matrix given by its upper triangle (00 01 11 02 12 22),
 /// packed lower (l00 l10 l11 l20 l21 l22). Err: the first pivot that is not positive.
-fn cholesky3(a: &[f64; 6]) -> std::result::Result<[f64; 6], usize> {
+fn cholesky3(a: &[f64; 6]) -> Result<[f64; 6], usize> {
     let [a00, a01, a11, a02, a12, a22] = *a;
     let positive = |d: f64, c: usize| if d > 0.0 { Ok(d.sqrt()) } else { Err(c) };
     let l00 = positive(a00, 0)?;
@@ -351,9 +363,8 @@ mod tests {
         let mut c = Condensation::analyse(&m, &[0, 1, 2]).expect("blocks to eliminate");
         // Block 2 is coupled to block 0, eliminated before it, so it stays.
         assert_eq!(c.kept(), &[6, 7, 8, 9, 10, 11]);
-        c.condense(&m).unwrap();
         let mut cholesky = Cholesky::analyse(&c.matrix, 1, None).unwrap();
-        cholesky.factorize(&c.matrix).unwrap();
+        c.factorize(&m, &mut cholesky).unwrap();
         let b: Vec<f64> = (0..12).map(|i| (i as f64 * 0.7).sin()).collect();
         let mut x = b.clone();
         c.solve_in_place(&mut cholesky, &mut x);
@@ -370,7 +381,24 @@ mod tests {
         let slot = m.slot(4, 4).unwrap();
         m.values[slot] = -1.0;
         let mut c = Condensation::analyse(&m, &[0, 1]).unwrap();
-        let e = c.condense(&m).unwrap_err().to_string();
-        assert!(e.contains("pivot at unknown 4 of 12"), "{e}");
+        let mut cholesky = Cholesky::analyse(&c.matrix, 1, None).unwrap();
+        assert_eq!(c.factorize(&m, &mut cholesky), Err(NotPositive(4)));
+        assert_eq!(
+            NotPositive(4).error(12).to_string(),
+            "solver: the linearized system is not positive definite (pivot at unknown 4 of \
+             12); try a larger regularization (--eps)"
+        );
+    }
+
+    /// A pivot of the rest is named by its unknown in the whole system, not in the rest.
+    #[test]
+    fn a_rest_that_is_not_positive_definite_is_an_error_naming_the_whole_systems_unknown() {
+        let mut m = example();
+        let slot = m.slot(10, 10).unwrap();
+        m.values[slot] = -1.0;
+        let mut c = Condensation::analyse(&m, &[0, 1, 2]).unwrap();
+        assert_eq!(c.kept()[4], 10);
+        let mut cholesky = Cholesky::analyse(&c.matrix, 1, None).unwrap();
+        assert_eq!(c.factorize(&m, &mut cholesky), Err(NotPositive(10)));
     }
 }

@@ -326,12 +326,10 @@ impl<'a> GuidedProjection<'a> {
 
         let t = Instant::now();
         match &mut self.condensation {
-            Some(c) => {
-                c.condense(&self.matrix)?;
-                self.cholesky.factorize(&c.matrix)?;
-            }
-            None => self.cholesky.factorize(&self.matrix)?,
+            Some(c) => c.factorize(&self.matrix, &mut self.cholesky),
+            None => self.cholesky.factorize(&self.matrix),
         }
+        .map_err(|p| p.error(self.matrix.n))?;
         state.factorizations += 1;
         state.t_factor += t.elapsed();
 
