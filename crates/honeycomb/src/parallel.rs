@@ -6,6 +6,15 @@ use std::sync::Mutex;
 /// Runs `first` on a second thread and `second` on this one (both here, one after the other,
 /// when no thread can be started).
 pub fn both<A: Send, B>(first: impl FnOnce() -> A + Send, second: impl FnOnce() -> B) -> (A, B) {
+    let (a, b, _) = both_telling(first, second);
+    (a, b)
+}
+
+/// [`both`], and whether `first` did run on a second thread.
+pub fn both_telling<A: Send, B>(
+    first: impl FnOnce() -> A + Send,
+    second: impl FnOnce() -> B,
+) -> (A, B, bool) {
     let slot = Mutex::new(Some(first));
     let run = || {
         let f = slot.lock().map(|mut f| f.take()).ok().flatten();
@@ -20,7 +29,8 @@ pub fn both<A: Send, B>(first: impl FnOnce() -> A + Send, second: impl FnOnce() 
                 .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
             Err(_) => None,
         };
-        (theirs.or_else(run).expect("runs once"), mine)
+        let apart = theirs.is_some();
+        (theirs.or_else(run).expect("runs once"), mine, apart)
     })
 }
 
@@ -38,6 +48,8 @@ mod tests {
         assert_eq!((a.1, b.1), (1, 2));
         assert_ne!(a.0, here, "the first runs on a second thread");
         assert_eq!(b.0, here, "the second runs here");
+        let (_, _, apart) = both_telling(|| 1, || 2);
+        assert!(apart, "and says so");
     }
 
     #[test]

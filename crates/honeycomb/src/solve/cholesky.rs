@@ -73,12 +73,12 @@ impl Cholesky {
         }
     }
 
-    /// Threads a numeric factorization is meant to run on: 2 for a split one (whose halves run
-    /// one after the other where no second thread can be started).
+    /// Threads the last numeric factorization ran on: 2 for a split one, unless no second
+    /// thread could be started (its halves then ran one after the other).
     pub fn threads(&self) -> usize {
         match self {
             Cholesky::Whole(_) => 1,
-            Cholesky::Split(_) => 2,
+            Cholesky::Split(c) => c.threads(),
         }
     }
 

@@ -19,7 +19,7 @@ use super::cholesky::{NotPositive, SparseFactor};
 use super::normal_matrix::NormalMatrix;
 use super::ordering::expand;
 use crate::error::Result;
-use crate::parallel::both;
+use crate::parallel::{both, both_telling};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
@@ -69,6 +69,8 @@ pub struct SplitCholesky {
     schur_scratch: MemBuffer,
     factor_nnz: usize,
     has_factor: bool,
+    /// Threads the last factorization ran on: 2, or 1 where no second thread could be started.
+    threads: usize,
 }
 
 impl SplitCholesky {
@@ -119,6 +121,7 @@ impl SplitCholesky {
             )),
             factor_nnz,
             has_factor: false,
+            threads: 2,
         })
     }
 
@@ -128,11 +131,17 @@ impl SplitCholesky {
         self.factor_nnz
     }
 
+    /// Threads the last factorization ran on (2 before the first).
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
     /// Numeric factorization: both halves at once, then the separator's Schur complement.
     pub fn factorize(&mut self, matrix: &NormalMatrix) -> std::result::Result<(), NotPositive> {
         self.has_factor = false;
         let [a, b] = &mut self.halves;
-        let (ra, rb) = both(|| a.factorize(matrix), || b.factorize(matrix));
+        let (ra, rb, apart) = both_telling(|| a.factorize(matrix), || b.factorize(matrix));
+        self.threads = if apart { 2 } else { 1 };
         ra?;
         rb?;
         let m = self.separator.len();
