@@ -10,6 +10,7 @@
 //! rest has half the operations of the whole.
 
 use super::cholesky::{Cholesky, NotPositive};
+use super::columns::Columns;
 use super::lists::Lists;
 use super::normal_matrix::NormalMatrix;
 
@@ -46,50 +47,6 @@ struct Eliminated {
     pairs: Vec<usize>,
     /// Where its `W` starts in `Condensation::w`.
     w_start: usize,
-}
-
-impl Eliminated {
-    /// Where block `first..first + 3` and its `neighbours` (indices of the rest) find their
-    /// entries: in the whole matrix `m` (through `adjacent`, every unknown's neighbours with
-    /// their slots) and in the rest's `matrix`.
-    fn locate(
-        first: usize,
-        neighbours: Vec<usize>,
-        w_start: usize,
-        m: &NormalMatrix,
-        matrix: &NormalMatrix,
-        kept: &[usize],
-        adjacent: &Lists<(usize, usize)>,
-    ) -> Eliminated {
-        // An entry's slot from the short list of the unknown's neighbours.
-        let entry = |i: usize, k: usize| {
-            let near = adjacent.get(i);
-            near.iter().find(|&&(j, _)| j == k).map(|&(_, s)| s)
-        };
-        let own = [(0, 0), (0, 1), (1, 1), (0, 2), (1, 2), (2, 2)].map(|(r, c)| {
-            let (i, k) = (first + r, first + c);
-            if i == k {
-                m.slot(i, i)
-            } else {
-                entry(i, k)
-            }
-        });
-        let coupling = (0..B)
-            .flat_map(|c| neighbours.iter().map(move |&n| (first + c, n)))
-            .map(|(i, n)| entry(i, kept[n]))
-            .collect();
-        let pairs = (0..neighbours.len())
-            .flat_map(|b| matrix.column_slots(neighbours[b], neighbours[..=b].iter().copied()))
-            .collect();
-        Eliminated {
-            first,
-            neighbours,
-            own,
-            coupling,
-            pairs,
-            w_start,
-        }
-    }
 }
 
 impl Condensation {
@@ -133,58 +90,78 @@ impl Condensation {
         for (r, &i) in kept.iter().enumerate() {
             index[i] = r;
         }
-        let blocks: Vec<(usize, Vec<usize>)> = (0..m.n / B)
-            .filter(|&b| eliminated[b])
-            .map(|b| {
-                let first = B * b;
-                let mut neighbours: Vec<usize> = (first..first + B)
-                    .flat_map(|i| adjacent.get(i).iter().map(|&(k, _)| index[k]))
-                    .filter(|&r| r != usize::MAX)
-                    .collect();
-                neighbours.sort_unstable();
-                neighbours.dedup();
-                (first, neighbours)
-            })
-            .collect();
-        // The rest's pattern (upper): its own entries and every eliminated block's neighbours
-        // pairwise, then each column sorted without repeats.
-        let columns = Lists::build(kept.len(), |visit| {
-            // A kept column's entries between kept unknowns (the numbering keeps their order).
-            for (r, &j) in kept.iter().enumerate() {
-                for &i in &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]] {
-                    if index[i] != usize::MAX {
-                        visit(r, index[i]);
+        // Each eliminated block: its neighbours (indices of the rest, sorted) and the slots
+        // of its entries in the whole matrix, from its unknowns' lists of neighbours.
+        let mut blocks = Vec::new();
+        let mut w_len = 0;
+        for b in (0..m.n / B).filter(|&b| eliminated[b]) {
+            let first = B * b;
+            let mut neighbours: Vec<usize> = (first..first + B)
+                .flat_map(|i| adjacent.get(i).iter().map(|&(k, _)| index[k]))
+                .filter(|&r| r != usize::MAX)
+                .collect();
+            neighbours.sort_unstable();
+            neighbours.dedup();
+            let n = neighbours.len();
+            let mut own = [None; 6];
+            let mut coupling = vec![None; B * n];
+            for c in 0..B {
+                own[packed(c, c)] = m.slot(first + c, first + c);
+                for &(k, s) in adjacent.get(first + c) {
+                    if k / B == b {
+                        own[packed(c.min(k - first), c.max(k - first))] = Some(s);
+                    } else if let Ok(p) = neighbours.binary_search(&index[k]) {
+                        coupling[c * n + p] = Some(s);
                     }
                 }
             }
-            for (_, neighbours) in &blocks {
-                for (a, &ra) in neighbours.iter().enumerate() {
-                    for &rb in &neighbours[..a] {
-                        visit(ra, rb);
-                    }
+            blocks.push(Eliminated {
+                first,
+                neighbours,
+                own,
+                coupling,
+                pairs: vec![0; n * (n + 1) / 2],
+                w_start: w_len,
+            });
+            w_len += B * n;
+        }
+        // The rest's pattern (upper), column by column (see `Columns`): a kept column's
+        // entries between kept unknowns (the numbering keeps their order), copied from the
+        // whole matrix, and every pair of neighbours of each block at it.
+        let at = Lists::build(kept.len(), |visit| {
+            for (k, e) in blocks.iter().enumerate() {
+                for (p, &r) in e.neighbours.iter().enumerate() {
+                    visit(r, (k, p));
                 }
             }
         });
-        let (col_ptr, row_idx) = columns.sorted_unique();
-        let matrix = NormalMatrix::with_pattern(kept.len(), col_ptr, row_idx);
+        let mut columns = Columns::new(kept.len());
         let mut copies = Vec::new();
         for (r, &j) in kept.iter().enumerate() {
-            let whole = m.col_ptr[j]..m.col_ptr[j + 1];
-            let rows = m.row_idx[whole.clone()].iter().map(|&i| index[i]);
-            let here = rows.filter(|&i| i != usize::MAX);
-            let slots = matrix.column_slots(r, here);
-            let from = whole.filter(|&s| index[m.row_idx[s]] != usize::MAX);
-            copies.extend(from.zip(slots));
+            for s in m.col_ptr[j]..m.col_ptr[j + 1] {
+                let a = index[m.row_idx[s]];
+                if a != usize::MAX {
+                    copies.push((s, columns.entry(a)));
+                }
+            }
+            for &(k, pb) in at.get(r) {
+                let e = &mut blocks[k];
+                for pa in 0..=pb {
+                    e.pairs[packed(pa, pb)] = columns.entry(e.neighbours[pa]);
+                }
+            }
+            columns.finish_column();
         }
-        let mut w_len = 0;
-        let blocks: Vec<Eliminated> = blocks
-            .into_iter()
-            .map(|(first, neighbours)| {
-                let w_start = w_len;
-                w_len += B * neighbours.len();
-                Eliminated::locate(first, neighbours, w_start, m, &matrix, &kept, &adjacent)
-            })
-            .collect();
+        let pattern = columns.finish();
+        for copy in &mut copies {
+            copy.1 = pattern.slot(copy.1);
+        }
+        for e in &mut blocks {
+            for s in &mut e.pairs {
+                *s = pattern.slot(*s);
+            }
+        }
+        let matrix = NormalMatrix::with_pattern(kept.len(), pattern.col_ptr, pattern.row_idx);
         Some(Condensation {
             rest: vec![0.0; kept.len()],
             kept,
@@ -281,6 +258,12 @@ impl Condensation {
             b[e.first..e.first + B].copy_from_slice(&x);
         }
     }
+}
+
+/// The place of entry (r, c), r <= c, of a symmetric matrix's upper triangle packed column by
+/// column: (0, 0), (0, 1), (1, 1), (0, 2), ..
+fn packed(r: usize, c: usize) -> usize {
+    c * (c + 1) / 2 + r
 }
 
 /// Cholesky factor of a symmetric 3 x 3 matrix given by its upper triangle (00 01 11 02 12 22),

@@ -1,5 +1,5 @@
-//! Many short lists in one flat array, built without a vector per list: the sparsity patterns
-//! (columns of a matrix, neighbours of an unknown) are made this way.
+//! Many short lists in one flat array, built without a vector per list: where each unknown
+//! occurs, and its neighbours, are kept this way.
 
 /// Lists in one flat array: list k is `items[start[k]..start[k + 1]]`.
 pub(super) struct Lists<T> {
@@ -27,26 +27,5 @@ impl<T: Copy + Default> Lists<T> {
 
     pub(super) fn get(&self, k: usize) -> &[T] {
         &self.items[self.start[k]..self.start[k + 1]]
-    }
-}
-
-impl<T: Copy + Default + Ord> Lists<T> {
-    /// Every list sorted and without repeats, compressed: (starts, items).
-    pub(super) fn sorted_unique(mut self) -> (Vec<usize>, Vec<T>) {
-        let mut start = Vec::with_capacity(self.start.len());
-        let mut items = Vec::with_capacity(self.items.len());
-        start.push(0);
-        for k in 0..self.start.len() - 1 {
-            let list = &mut self.items[self.start[k]..self.start[k + 1]];
-            list.sort_unstable();
-            let first = items.len();
-            for &i in list.iter() {
-                if items.len() == first || items[items.len() - 1] != i {
-                    items.push(i);
-                }
-            }
-            start.push(items.len());
-        }
-        (start, items)
     }
 }

@@ -2,6 +2,7 @@
 //! linear and quadratic constraints, on a sparsity pattern that is fixed for the whole solve.
 
 mod cholesky;
+mod columns;
 mod condensation;
 mod constraint;
 mod dissection;

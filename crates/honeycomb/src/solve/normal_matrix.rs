@@ -6,6 +6,7 @@
 //! With a [`Substitution`] the rows are rewritten over the solver's unknowns once: each row's
 //! variables become the union of their terms, and each Jacobian entry is spread over those.
 
+use super::columns::Columns;
 use super::constraint::Constraint;
 use super::lists::Lists;
 use super::substitution::Substitution;
@@ -192,23 +193,6 @@ impl NormalMatrix {
         }
     }
 
-    /// The value slots of the entries in `rows` (increasing, all in the pattern) of column `c`,
-    /// in one walk down the column.
-    pub(super) fn column_slots<'m>(
-        &'m self,
-        c: usize,
-        rows: impl Iterator<Item = usize> + 'm,
-    ) -> impl Iterator<Item = usize> + 'm {
-        let mut s = self.col_ptr[c];
-        rows.map(move |r| {
-            while self.row_idx[s] < r {
-                s += 1;
-            }
-            debug_assert_eq!(self.row_idx[s], r, "entry ({r}, {c}) is in the pattern");
-            s
-        })
-    }
-
     /// The value slot of entry (r, c) or (c, r), if it is in the pattern.
     pub(super) fn slot(&self, r: usize, c: usize) -> Option<usize> {
         find_slot(&self.col_ptr, &self.row_idx, r, c)
@@ -297,9 +281,8 @@ impl NormalMatrix {
 /// The upper-triangular pattern, column-compressed with sorted rows (the diagonal last), of
 /// the diagonal and every pair of unknowns that share a row; fills in every row's value slots.
 ///
-/// Column by column: the rows that hold the column's unknown are visited, and a mark per
-/// unknown finds the slot of an entry already made in this column, so no pair is searched
-/// for. Each column is sorted once at the end and the slots renumbered to match.
+/// Column by column (see `Columns`): the rows that hold the column's unknown are visited, so
+/// no pair is searched for.
 fn pattern(n: usize, mapped: &mut [MappedRows]) -> (Vec<usize>, Vec<usize>) {
     // Every row of every family, and where each unknown occurs: (row, position in it).
     let rows: Vec<(u32, u32)> = (0..mapped.len())
@@ -323,15 +306,8 @@ fn pattern(n: usize, mapped: &mut [MappedRows]) -> (Vec<usize>, Vec<usize>) {
         m.slots = vec![0; slot_start[m.rows()]];
         m.slot_start = slot_start;
     }
-    let mut col_ptr = Vec::with_capacity(n + 1);
-    col_ptr.push(0);
-    let mut row_idx: Vec<usize> = Vec::new();
-    // marked[a] == b + 1: unknown a has its entry of column b at slot slot_of[a].
-    let (mut marked, mut slot_of) = (vec![0usize; n], vec![0usize; n]);
-    // Slot in the order of first use → slot in the sorted column.
-    let mut renumbered: Vec<u32> = Vec::new();
+    let mut columns = Columns::new(n);
     for b in 0..n {
-        let start = row_idx.len();
         for &(g, pb) in occurrences.get(b) {
             let (f, r) = rows[g as usize];
             let m = &mut mapped[f as usize];
@@ -339,35 +315,24 @@ fn pattern(n: usize, mapped: &mut [MappedRows]) -> (Vec<usize>, Vec<usize>) {
             let vars = &m.vars[m.var_start[r]..m.var_start[r + 1]];
             let first = m.slot_start[r];
             for (pa, &a) in vars.iter().enumerate().filter(|&(_, &a)| a <= b) {
-                if marked[a] != b + 1 {
-                    marked[a] = b + 1;
-                    slot_of[a] = row_idx.len();
-                    row_idx.push(a);
-                }
-                m.slots[first + pair_index(pa.min(pb), pa.max(pb), vars.len())] = slot_of[a] as u32;
+                m.slots[first + pair_index(pa.min(pb), pa.max(pb), vars.len())] =
+                    columns.entry(a) as u32;
             }
         }
-        if marked[b] != b + 1 {
-            slot_of[b] = row_idx.len();
-            row_idx.push(b);
-        }
+        columns.entry(b);
         assert!(
-            row_idx.len() < u32::MAX as usize,
+            columns.nnz() < u32::MAX as usize,
             "normal matrix too large for 32-bit slots"
         );
-        row_idx[start..].sort_unstable();
-        renumbered.resize(row_idx.len(), 0);
-        for s in start..row_idx.len() {
-            renumbered[slot_of[row_idx[s]]] = s as u32;
-        }
-        col_ptr.push(row_idx.len());
+        columns.finish_column();
     }
+    let pattern = columns.finish();
     for m in mapped.iter_mut() {
         for s in &mut m.slots {
-            *s = renumbered[*s as usize];
+            *s = pattern.slot(*s as usize) as u32;
         }
     }
-    (col_ptr, row_idx)
+    (pattern.col_ptr, pattern.row_idx)
 }
 
 /// The place of pair (p, q), p <= q, among the pairs of a row of `k` unknowns listed as
