@@ -24,15 +24,6 @@ impl WallPlane {
     pub fn offset(&self, e: usize) -> usize {
         self.offsets[e]
     }
-
-    /// Sets the offsets in `x` to the walls through the edges' midpoints.
-    pub fn set_initial_offsets(&self, x: &mut [f64]) {
-        let l = &self.layout;
-        for (e, &[a, b]) in self.edges.iter().enumerate() {
-            let mid = (l.vertex_at(x, a) + l.vertex_at(x, b)) * 0.5;
-            x[self.offsets[e]] = l.normal_at(x, e).dot(mid - self.anchors[e]);
-        }
-    }
 }
 
 impl Constraint for WallPlane {

@@ -112,8 +112,8 @@ fn wall_planes(mesh: &PolyMesh, conn: &Connectivity, x: &mut Vec<f64>, weight: f
         anchors,
         weight,
     };
+    // Each wall starts through its edge's midpoint, which is its anchor: offset 0.
     x.resize(x.len() + conn.num_edges(), 0.0);
-    planes.set_initial_offsets(x);
     planes
 }
 
