@@ -3,32 +3,38 @@
 
 mod boundary_curve;
 mod closeness;
+mod edge_vectors;
 mod layout;
 mod min_edge_length;
 mod node_angle;
 mod node_orientation;
 mod normalization;
 mod opposite_walls;
+mod orthogonal_difference;
 mod parallel_mesh;
 mod polyline_fairness;
 mod prescribed_axes;
 mod quad_planarity;
+mod rigid_triangles;
 mod targets;
 mod wall_consistency;
 mod wall_plane;
 
 pub use boundary_curve::BoundaryCurve;
 pub use closeness::Closeness;
+pub use edge_vectors::EdgeVectors;
 pub use layout::Layout;
 pub use min_edge_length::MinEdgeLength;
 pub use node_angle::{Node2, Node3};
 pub use node_orientation::NodeOrientation;
 pub use normalization::Normalization;
 pub use opposite_walls::OppositeWalls;
+pub use orthogonal_difference::OrthogonalDifference;
 pub use parallel_mesh::{ConstantDepth, EdgeParallelity, OffsetBlock, OffsetOnAxis};
 pub use polyline_fairness::{LateralRun, StraightFairness, ZigzagFairness};
 pub use prescribed_axes::PrescribedAxes;
 pub use quad_planarity::{QuadNormalBlock, QuadNormalization, QuadPlanarity};
+pub use rigid_triangles::{RigidTriangles, SharedRotations};
 pub use targets::{AxisTargets, SharedTargets, VertexTargets};
 pub use wall_consistency::WallConsistency;
 pub use wall_plane::WallPlane;

@@ -1,5 +1,6 @@
 //! Geometric primitives shared by every module.
 
+pub mod rotation;
 mod segment;
 mod sym3;
 mod vec3;

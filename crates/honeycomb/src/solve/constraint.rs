@@ -16,12 +16,19 @@ pub enum Role {
     Guide,
 }
 
+/// A guide's weight is multiplied by this after every iteration, unless it says otherwise.
+pub const GUIDE_FADE: f64 = 0.3;
+
 pub trait Constraint: Send + Sync {
     /// Short name for reports, e.g. "node_120".
     fn name(&self) -> &str;
     fn weight(&self) -> f64;
     fn role(&self) -> Role {
         Role::Condition
+    }
+    /// With `Role::Guide`: the factor its weight is multiplied by after every iteration.
+    fn guide_fade(&self) -> f64 {
+        GUIDE_FADE
     }
     fn num_rows(&self) -> usize;
     /// Number of variables each row touches.

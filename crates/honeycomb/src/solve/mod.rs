@@ -13,7 +13,7 @@ mod solver;
 mod split;
 mod substitution;
 
-pub use constraint::{jacobian_fd_error, Constraint, Role};
+pub use constraint::{jacobian_fd_error, Constraint, Role, GUIDE_FADE};
 pub use solver::{
     FamilyResidual, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
 };

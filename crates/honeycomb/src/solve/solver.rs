@@ -22,6 +22,8 @@ pub struct SolverOptions {
     pub tolerance: f64,
     /// Halve a step that blows up the weighted residual energy.
     pub step_control: bool,
+    /// With step control: the factor a whole step may multiply the energy by.
+    pub energy_growth: f64,
 }
 
 impl Default for SolverOptions {
@@ -32,6 +34,7 @@ impl Default for SolverOptions {
             eps_min: 1e-8,
             tolerance: 1e-11,
             step_control: true,
+            energy_growth: ENERGY_GROWTH_ALLOWED,
         }
     }
 }
@@ -81,8 +84,6 @@ pub struct SolveReport {
     pub history: Vec<IterationInfo>,
 }
 
-/// A guide's weight is multiplied by this after every iteration.
-const GUIDE_FADE: f64 = 0.3;
 /// Regularization decay after a step that paid off (see `paid_off`): with a small eps the step
 /// is close to the minimum-norm Gauss-Newton step, which converges where a fixed eps stalls on
 /// the low-frequency modes (singular values below sqrt(eps)).
@@ -97,7 +98,7 @@ const EPS_GROWTH: f64 = 10.0;
 /// pay off, so that a steady climb cannot drive eps down.
 const PAID_OFF_GROWTH: f64 = 1.1;
 
-/// Step control halves a step only when it multiplies the weighted residual energy by more
+/// By default step control halves a step only when it multiplies the weighted residual energy by more
 /// than this: a guard against divergence. Demanding a monotone decrease stalls the iteration,
 /// because the low-frequency modes a honeycomb needs pass through a transient rise of the
 /// residuals of the quadratic constraints.
@@ -223,7 +224,7 @@ impl<'a> GuidedProjection<'a> {
     fn weight(&self, f: usize, fade: f64) -> f64 {
         let c = &self.families[f];
         match c.role() {
-            Role::Guide => c.weight() * GUIDE_FADE.powi(self.iteration as i32),
+            Role::Guide => c.weight() * c.guide_fade().powi(self.iteration as i32),
             Role::Condition => c.weight(),
             Role::Fairness => c.weight() * fade.sqrt(),
         }
@@ -352,7 +353,7 @@ impl<'a> GuidedProjection<'a> {
                 *t = xi + scale * d;
             }
             let trial_energy = self.evaluate(&state.trial, fade).0;
-            let acceptable = trial_energy <= energy * ENERGY_GROWTH_ALLOWED;
+            let acceptable = trial_energy <= energy * opts.energy_growth;
             if !opts.step_control || halvings == 5 || acceptable {
                 break trial_energy;
             }
@@ -417,6 +418,32 @@ impl<'a> GuidedProjection<'a> {
             families,
             history: state.history,
         }
+    }
+}
+
+impl SolveReport {
+    /// This report followed by `next`, a later solve of the same problem: iterations, work and
+    /// time add up, the residuals and the convergence are the later solve's.
+    pub fn then(mut self, next: SolveReport) -> SolveReport {
+        self.iterations += next.iterations;
+        self.converged = next.converged;
+        self.unknowns = self.unknowns.max(next.unknowns);
+        self.eliminated_unknowns = self.eliminated_unknowns.max(next.eliminated_unknowns);
+        self.matrix_nnz = self.matrix_nnz.max(next.matrix_nnz);
+        self.factor_nnz = self.factor_nnz.max(next.factor_nnz);
+        self.factor_threads = self.factor_threads.max(next.factor_threads);
+        self.factorizations += next.factorizations;
+        self.seconds_symbolic += next.seconds_symbolic;
+        self.seconds_assembly += next.seconds_assembly;
+        self.seconds_factorization += next.seconds_factorization;
+        self.seconds_other += next.seconds_other;
+        self.families = next.families;
+        let offset = self.history.len();
+        self.history.extend(next.history.into_iter().map(|mut i| {
+            i.iteration += offset;
+            i
+        }));
+        self
     }
 }
 
