@@ -18,13 +18,14 @@ pub struct Args {
     pub output: PathBuf,
     /// What the wall colours show: omega (the worst node angle at either end, degrees), delta
     /// (the wall's planarity), closeness (distance of its ends from S, in mean edge lengths;
-    /// needs --surface or DIR/surface.obj) or area (|spherical area| of its cells, sr).
+    /// needs --surface or DIR/surface.obj), axis (the larger angle of its two node axes to S's
+    /// normal, degrees; needs S too) or area (|spherical area| of its cells, sr).
     #[arg(long, default_value = "delta")]
     pub color: String,
     /// Viewing direction: top, front, side or iso.
     #[arg(long, default_value = "iso")]
     pub view: View,
-    /// The design surface S, for --color closeness (default: DIR/surface.obj when present).
+    /// The design surface S, for --color closeness and axis (default: DIR/surface.obj when present).
     #[arg(long)]
     pub surface: Option<PathBuf>,
     /// Draw the spherical image instead (node axes on the unit sphere, cells by area).
@@ -81,28 +82,36 @@ pub fn run(args: Args) -> Result<()> {
                 .map(|&[a, b]| m.omega_per_node[a].max(m.omega_per_node[b]))
                 .collect(),
         ),
-        "closeness" => {
+        "closeness" | "axis" => {
             let path = args
                 .surface
                 .clone()
                 .unwrap_or_else(|| args.dir.join("surface.obj"));
             if !path.is_file() {
                 return Err(Error::Parameter(format!(
-                    "--color closeness needs the design surface: {} does not exist (give --surface S)",
+                    "--color {} needs the design surface: {} does not exist (give --surface S)",
+                    args.color,
                     path.display()
                 )));
             }
             let surface = Surface::from_mesh(&read_mesh(&path)?.mesh)?;
-            let unit = m.mean_edge_length;
-            let d: Vec<f64> = h
-                .base
-                .vertices
-                .iter()
-                .map(|&p| surface.closest_point(p).distance / unit)
-                .collect();
+            let on_surface = measure(&h, &surface);
+            let (label, per_node) = if args.color == "axis" {
+                ("axis to normal (deg)", on_surface.axis_normal_per_node)
+            } else {
+                let unit = on_surface.mean_edge_length;
+                let d = surface.closest_points(&h.base.vertices);
+                (
+                    "closeness (edge lengths)",
+                    d.iter().map(|c| c.distance / unit).collect(),
+                )
+            };
             (
-                "closeness (edge lengths)",
-                h.edges.iter().map(|&[a, b]| d[a].max(d[b])).collect(),
+                label,
+                h.edges
+                    .iter()
+                    .map(|&[a, b]| per_node[a].max(per_node[b]))
+                    .collect(),
             )
         }
         "area" => {
@@ -123,7 +132,7 @@ pub fn run(args: Args) -> Result<()> {
         }
         other => {
             return Err(Error::Parameter(format!(
-                "--color {other}: expected omega, delta, closeness or area"
+                "--color {other}: expected omega, delta, closeness, axis or area"
             )))
         }
     };

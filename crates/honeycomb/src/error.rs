@@ -57,6 +57,16 @@ pub fn rounded(x: f64, digits: usize) -> String {
     short_number(text.parse().unwrap_or(x))
 }
 
+/// A direction as a message shows it: `0,0,1`, each coordinate to 4 significant digits.
+pub fn short_vector(v: crate::Vec3) -> String {
+    format!(
+        "{},{},{}",
+        rounded(v.x, 4),
+        rounded(v.y, 4),
+        rounded(v.z, 4)
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::{rounded, short_number};

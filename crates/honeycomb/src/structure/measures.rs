@@ -27,6 +27,14 @@ pub struct Measures {
     /// The shortest edge of M (model units).
     pub min_edge_length: f64,
     pub valence_histogram: BTreeMap<usize, usize>,
+    /// How the walls stand on S: the angle (degrees) between each node axis `v' - v` and S's
+    /// normal at the vertex's closest point on S, as lines.
+    pub axis_normal_deg: Spread,
+    /// The same for one common axis, S's area-weighted mean normal, at the same points: what a
+    /// plan-view honeycomb with parallel axes scores.
+    pub parallel_baseline_deg: Spread,
+    /// Standard deviation over mean of the edge lengths of M: cells of one size read 0.
+    pub edge_length_cv: f64,
     /// Per node: the largest omega there (degrees).
     #[serde(skip)]
     pub omega_per_node: Vec<f64>,
@@ -36,6 +44,38 @@ pub struct Measures {
     /// Per edge: whether its wall quad is convex.
     #[serde(skip)]
     pub convex_per_wall: Vec<bool>,
+    /// Per node: the angle (degrees) between its axis and S's normal.
+    #[serde(skip)]
+    pub axis_normal_per_node: Vec<f64>,
+}
+
+/// Mean, 95th percentile and largest of a set of values.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Spread {
+    pub mean: f64,
+    pub p95: f64,
+    pub max: f64,
+}
+
+impl Spread {
+    pub fn of(values: &[f64]) -> Spread {
+        if values.is_empty() {
+            return Spread::default();
+        }
+        let mut sorted = values.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let rank = ((0.95 * sorted.len() as f64).ceil() as usize).clamp(1, sorted.len());
+        Spread {
+            mean: values.iter().sum::<f64>() / values.len() as f64,
+            p95: sorted[rank - 1],
+            max: sorted[sorted.len() - 1],
+        }
+    }
+}
+
+/// The angle (degrees) between two lines with unit directions `a` and `b`.
+pub fn line_angle_deg(a: Vec3, b: Vec3) -> f64 {
+    a.dot(b).abs().min(1.0).acos().to_degrees()
 }
 
 /// The angles (degrees) between consecutive walls around the axis at node `v`: three for a
@@ -154,12 +194,26 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         .iter()
         .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
         .fold(f64::INFINITY, f64::min);
-    let closeness: Vec<f64> = h
-        .base
-        .vertices
+    let feet = surface.closest_points(&h.base.vertices);
+    let closeness: Vec<f64> = feet.iter().map(|c| c.distance / mean_edge_length).collect();
+    let common = surface.mean_normal();
+    let (lean, baseline): (Vec<f64>, Vec<f64>) = (0..nv)
+        .map(|v| {
+            let axis = (h.offset.vertices[v] - h.base.vertices[v]).normalized();
+            let n = feet[v].normal;
+            (line_angle_deg(axis, n), line_angle_deg(common, n))
+        })
+        .unzip();
+    let lengths: Vec<f64> = h
+        .edges
         .iter()
-        .map(|&p| surface.closest_point(p).distance / mean_edge_length)
+        .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
         .collect();
+    let variance = lengths
+        .iter()
+        .map(|l| (l - mean_edge_length).powi(2))
+        .sum::<f64>()
+        / lengths.len().max(1) as f64;
     let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
     let avg = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
     Measures {
@@ -173,9 +227,13 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         mean_edge_length,
         min_edge_length,
         valence_histogram,
+        axis_normal_deg: Spread::of(&lean),
+        parallel_baseline_deg: Spread::of(&baseline),
+        edge_length_cv: variance.sqrt() / mean_edge_length.max(1e-300),
         omega_per_node,
         delta_per_wall,
         convex_per_wall,
+        axis_normal_per_node: lean,
     }
 }
 

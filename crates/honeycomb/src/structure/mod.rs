@@ -9,7 +9,9 @@ mod variant_measures;
 
 pub use axes::node_axes;
 pub use honeycomb::{Honeycomb, StructureJson};
-pub use measures::{measure, node_angles, quad_planarity, thickest_uncrossed, Measures};
+pub use measures::{
+    line_angle_deg, measure, node_angles, quad_planarity, thickest_uncrossed, Measures, Spread,
+};
 pub use quad_cover::{EdgeClasses, QuadCover, QuadPattern, StraightRun, ZigzagRun};
 pub use quad_measures::{face_measures, quad_mesh_measures, FaceMeasures};
 pub use variant_measures::{

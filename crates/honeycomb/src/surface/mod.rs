@@ -4,6 +4,7 @@
 mod boundary;
 mod bvh;
 mod closest;
+mod curvature;
 mod normals;
 mod orient;
 #[cfg(test)]
@@ -12,6 +13,7 @@ mod tests;
 pub use boundary::BoundaryPoint;
 pub use bvh::Bvh;
 pub use closest::{closest_point_on_segment, closest_point_on_triangle};
+pub use curvature::CurvatureUnits;
 
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
@@ -162,6 +164,20 @@ impl Surface {
     /// The surface normal at the point of S closest to `p`.
     pub fn normal_at(&self, p: Vec3) -> Vec3 {
         self.closest_point(p).normal
+    }
+
+    /// S's area-weighted mean normal (unit): the direction of the sum of its oriented
+    /// triangles' areas. Zero for a closed surface, whose areas cancel.
+    pub fn mean_normal(&self) -> Vec3 {
+        let sum = self
+            .corners
+            .iter()
+            .fold(Vec3::ZERO, |s, &[a, b, c]| s + (b - a).cross(c - a));
+        if sum.norm() > 0.0 {
+            sum.normalized()
+        } else {
+            sum
+        }
     }
 
     pub fn has_boundary(&self) -> bool {
