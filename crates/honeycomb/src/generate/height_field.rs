@@ -1,6 +1,6 @@
 //! Analytic design surfaces given as height fields z = f(x, y) over a disk of radius `d`:
-//! the saddle (negative curvature), the dome (positive), the cylinder (developable) and the
-//! roof (both kinds, over a rectangle; see `roof`).
+//! the saddle (negative curvature), the dome (positive), the cylinder and the cone
+//! (developable), the wave (both kinds) and the roof (both kinds, over a rectangle; see `roof`).
 
 use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
@@ -11,6 +11,10 @@ pub enum Shape {
     Saddle,
     Dome,
     Cylinder,
+    /// A slope on a cone whose apex lies outside the patch (developable, rulings that fan out).
+    Cone,
+    /// A wave along x that fades across y (domes and saddles by turns).
+    Wave,
     /// An undulating sheet twice as long as wide (`roof` with amplitude `ROOF_AMPLITUDE`).
     Roof,
 }
@@ -22,9 +26,11 @@ impl FromStr for Shape {
             "saddle" => Ok(Shape::Saddle),
             "dome" => Ok(Shape::Dome),
             "cylinder" => Ok(Shape::Cylinder),
+            "cone" => Ok(Shape::Cone),
+            "wave" => Ok(Shape::Wave),
             "roof" => Ok(Shape::Roof),
             _ => Err(format!(
-                "unknown surface '{s}': expected saddle, dome, cylinder or roof"
+                "unknown surface '{s}': expected saddle, dome, cylinder, cone, wave or roof"
             )),
         }
     }
@@ -50,6 +56,15 @@ impl HeightField {
             Shape::Cylinder => {
                 let r = 1.5 * d;
                 (r * r - x * x).max(0.0).sqrt() - r
+            }
+            Shape::Cone => {
+                // Apex 2.5 d beyond the patch's edge, flanks rising at 1 in 2 towards it.
+                let apex = 2.5 * d;
+                0.5 * (apex - ((x + apex).powi(2) + y * y).sqrt())
+            }
+            Shape::Wave => {
+                let pi = std::f64::consts::PI;
+                0.15 * d * (pi * x / d).sin() * (0.5 * pi * y / d).cos()
             }
             Shape::Roof => super::roof::roof_height(x, y, d, super::roof::ROOF_AMPLITUDE),
         }

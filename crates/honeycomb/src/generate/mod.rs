@@ -25,6 +25,15 @@ pub fn lifted_hex_patch(shape: Shape, vertices: usize) -> (PolyMesh, PolyMesh) {
     (base, field.triangulate(cells_across.clamp(32, 160)))
 }
 
+/// A built-in design surface on its own (what `pipeline` takes): the height field over a
+/// square of side 24 (triangles of 0.2), or the roof of about 3500 cells' worth.
+pub fn design_surface(shape: Shape) -> PolyMesh {
+    if shape == Shape::Roof {
+        return roof(3500, ROOF_AMPLITUDE).1;
+    }
+    HeightField { shape, d: 10.0 }.triangulate(120)
+}
+
 /// `hex_disk(radius)` in z = 0 with every node axis vertical and M' at `thickness` above: an
 /// exact honeycomb (upright planar walls at 120 degrees), the unit tests' smallest subject.
 #[cfg(test)]

@@ -111,6 +111,16 @@ pub fn flatten(
     triangles: &[[usize; 3]],
     flattener: Flattener,
 ) -> Result<Flattening> {
+    flatten_viewed(vertices, triangles, flattener, None)
+}
+
+/// [`flatten`], with `Flattener::Project` seen along `view` (unit) when given.
+pub fn flatten_viewed(
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    flattener: Flattener,
+    view: Option<Vec3>,
+) -> Result<Flattening> {
     let boundary = boundary_half_edges(triangles);
     if boundary.is_empty() {
         return Err(Error::Mesh(
@@ -119,7 +129,7 @@ pub fn flatten(
     }
     let area3: f64 = triangles.iter().map(|t| triangle_area(vertices, t)).sum();
     let mut points = match flattener {
-        Flattener::Project => project(vertices, triangles),
+        Flattener::Project => project(vertices, triangles, view),
         Flattener::Lscm | Flattener::Arap => lscm(vertices, triangles, &boundary)?,
     };
     if flattener == Flattener::Project {
@@ -131,6 +141,16 @@ pub fn flatten(
             .collect();
         let away_area: f64 = away.iter().map(|t| triangle_area(vertices, t)).sum();
         if away_area > MAX_AWAY_AREA * area3 {
+            if let Some(d) = view {
+                return Err(Error::Mesh(format!(
+                    "{} triangles ({:.1}% of the area) face away from the direction {}: seen \
+                     along it the surface folds over itself, so walls along it would lie in \
+                     the surface",
+                    away.len(),
+                    100.0 * away_area / area3,
+                    crate::error::short_vector(d)
+                )));
+            }
             return Err(Error::Mesh(format!(
                 "{} triangles ({:.1}% of the area) face away from every view direction: seen \
                  from anywhere the surface folds over itself, so it cannot be projected \
@@ -276,11 +296,11 @@ fn lscm(
     Ok(points)
 }
 
-/// Orthogonal projection onto the plane across a view direction: the surface's mean normal
-/// (area-weighted) when every triangle faces it, else the direction that the worst triangle
-/// faces best. A grid laid there and lifted back is a honeycomb with parallel node axes from
-/// the start.
-fn project(vertices: &[Vec3], triangles: &[[usize; 3]]) -> Vec<Point2> {
+/// Orthogonal projection onto the plane across a view direction: `view` when given, else the
+/// surface's mean normal (area-weighted) when every triangle faces it, else the direction
+/// that the worst triangle faces best. A grid laid there and lifted back is a honeycomb with
+/// parallel node axes from the start.
+fn project(vertices: &[Vec3], triangles: &[[usize; 3]], view: Option<Vec3>) -> Vec<Point2> {
     let normals: Vec<Vec3> = triangles
         .iter()
         .map(|t| (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]))
@@ -292,10 +312,10 @@ fn project(vertices: &[Vec3], triangles: &[[usize; 3]]) -> Vec<Point2> {
         .map(|n| n.normalized())
         .collect();
     let worst = |d: Vec3| units.iter().fold(f64::INFINITY, |m, n| m.min(n.dot(d)));
-    let view = if worst(mean) > 0.0 {
-        mean
-    } else {
-        best_view(&worst, mean)
+    let view = match view {
+        Some(d) => d,
+        None if worst(mean) > 0.0 => mean,
+        None => best_view(&worst, mean),
     };
     let u = view.any_orthogonal().normalized();
     let v = view.cross(u);

@@ -19,7 +19,7 @@ mod lattice;
 mod locate;
 mod strokes;
 
-pub use flatten::{flatten, Distortion, Flattener, Flattening, Point2};
+pub use flatten::{flatten, flatten_viewed, Distortion, Flattener, Flattening, Point2};
 pub use lattice::{Corner, Lattice};
 pub use strokes::{read_strokes, sixfold_mean};
 
@@ -116,6 +116,9 @@ pub struct InitOptions {
     pub align: Align,
     pub boundary: BoundaryMode,
     pub flattener: Flattener,
+    /// With `Flattener::Project`: the view direction (unit); `None`: S's mean normal, or the
+    /// direction that S's worst triangle faces best.
+    pub view: Option<Vec3>,
     /// Shifts the lattice by a pseudo-random offset within one cell (0: no shift); the same
     /// seed gives the same mesh.
     pub seed: u64,
@@ -183,6 +186,7 @@ impl InitOptions {
             align: Align::Boundary,
             boundary: BoundaryMode::Trim,
             flattener: Flattener::Arap,
+            view: None,
             seed: 0,
         }
     }
@@ -200,7 +204,18 @@ impl InitOptions {
     }
 }
 
-/// A hexagonal base mesh on `surface` (a triangle, quad or polygon mesh).
+/// Cells within this share of the count asked for are taken as they come; beyond it the
+/// lattice is rescaled: trimming the boundary and the flattening's area scale move the count.
+const COUNT_SLACK: f64 = 0.05;
+/// Rescalings of the lattice at most.
+const COUNT_ROUNDS: usize = 3;
+/// A mesh covering less than this share of S's area (with `--cells`) comes from a flattening
+/// that folded over: ARAP is given up for LSCM.
+const MIN_COVERED_SHARE: f64 = 0.5;
+
+/// A hexagonal base mesh on `surface` (a triangle, quad or polygon mesh). With a number of
+/// cells, the lattice is rescaled until the count is within a few percent of it (or as
+/// close as three tries come).
 pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     let start = Instant::now();
     options.validate()?;
@@ -211,11 +226,72 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
             "the surface has {components} separate pieces; init needs one (split the file)"
         )));
     }
-    if options.method == Method::Field {
-        return init_field(surface, options, start);
+    let mut made = match options.method {
+        Method::Field => counted(options, |o| init_field(surface, o, start))?,
+        Method::Flatten => {
+            let (vertices, triangles) = surface.star_triangulated();
+            let flat = flatten_viewed(&vertices, &triangles, options.flattener, options.view)?;
+            let made = counted(options, |o| {
+                lay_lattice(surface, &vertices, &triangles, &flat, o, start)
+            })?;
+            let covered = made.base.area() / flat.area;
+            if options.flattener == Flattener::Arap
+                && flat.flattener == Flattener::Arap
+                && matches!(options.size, CellSize::Cells(_))
+                && covered < MIN_COVERED_SHARE
+            {
+                // The refinement folded the domain over itself and cut it apart.
+                let lscm = flatten(&vertices, &triangles, Flattener::Lscm)?;
+                counted(options, |o| {
+                    lay_lattice(surface, &vertices, &triangles, &lscm, o, start)
+                })?
+            } else {
+                made
+            }
+        }
+    };
+    made.report.seconds = start.elapsed().as_secs_f64();
+    Ok(made)
+}
+
+/// `make` with `options`, and with rescaled cells while the count is off what `options` asks.
+fn counted(
+    options: &InitOptions,
+    make: impl Fn(&InitOptions) -> Result<Initialized>,
+) -> Result<Initialized> {
+    let mut made = make(options)?;
+    let CellSize::Cells(target) = options.size else {
+        return Ok(made);
+    };
+    let off = |m: &Initialized| (m.report.cells as f64 / target as f64 - 1.0).abs();
+    for _ in 0..COUNT_ROUNDS {
+        if off(&made) <= COUNT_SLACK {
+            break;
+        }
+        let ratio = made.report.cells as f64 / target as f64;
+        let edge = made.report.edge_length_target * ratio.sqrt();
+        let rescaled = InitOptions {
+            size: CellSize::EdgeLength(edge),
+            ..options.clone()
+        };
+        match make(&rescaled) {
+            Ok(again) if off(&again) < off(&made) => made = again,
+            _ => break,
+        }
     }
-    let (vertices, triangles) = surface.star_triangulated();
-    let flat = flatten(&vertices, &triangles, options.flattener)?;
+    Ok(made)
+}
+
+/// A regular hexagonal lattice laid over the flattening `flat` of `surface` (triangulated as
+/// `vertices`, `triangles`), its corners mapped back onto S.
+fn lay_lattice(
+    surface: &PolyMesh,
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    flat: &Flattening,
+    options: &InitOptions,
+    start: Instant,
+) -> Result<Initialized> {
     let area = flat.area;
     let edge = options.size.edge_on(area);
     let fits = area / hexagon_area(edge);
@@ -225,7 +301,7 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
              expected at most {MAX_CELLS}"
         )));
     }
-    let angle = lattice_angle(options, &vertices, &triangles, &flat.points)?;
+    let angle = lattice_angle(options, vertices, triangles, &flat.points)?;
     let lattice = Lattice {
         edge,
         angle,
@@ -241,8 +317,8 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
              for {fits:.0} on the surface: too thin for a grid of this size"
         )));
     }
-    let locator = Locator::new(&flat.points, &triangles);
-    let boundary = flatten::boundary_half_edges(&triangles);
+    let locator = Locator::new(&flat.points, triangles);
+    let boundary = flatten::boundary_half_edges(triangles);
     let placed = place_cells(
         &lattice,
         &flat.points,
@@ -319,7 +395,7 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
         Some(FlatteningReport {
             flattener: flat.flattener,
             lattice_angle_deg: angle.to_degrees(),
-            flattening: flat.distortion,
+            flattening: flat.distortion.clone(),
             flipped_triangles: flat.flipped,
         }),
         start,
