@@ -1,6 +1,6 @@
 //! `honeycomb demo`: the first success of a new user, no input file needed.
 
-use crate::optimize::{optimize_and_write, solve_options, BrokenCells, SolveArgs};
+use crate::optimize::{optimize_and_write, solve_options, SolveArgs};
 use honeycomb::export::write_json;
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::mesh::write_mesh;
@@ -37,14 +37,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     let (base, surface) = lifted_hex_patch(args.shape, args.vertices);
     let prepared = solve_options(&args.opts, &base, Some(&surface))?;
-    optimize_and_write(
-        &base,
-        Some(&surface),
-        &args.opts,
-        prepared,
-        &args.output,
-        BrokenCells::Keep,
-    )?;
+    optimize_and_write(&base, Some(&surface), &args.opts, prepared, &args.output)?;
     // The inputs too, so the result can be reproduced with `honeycomb optimize`.
     write_mesh(&args.output.join("input_base.obj"), &base)?;
     write_mesh(&args.output.join("surface.obj"), &surface)?;

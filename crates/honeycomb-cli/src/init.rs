@@ -1,16 +1,19 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{load, name_file, optimize_and_write, solve_options, BrokenCells, SolveArgs};
-use crate::progress::{Output, Spinner};
+use crate::optimize::{finish, load, name_file, output_dir, print_notes, SolveArgs};
+use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
     init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, Initialized, Method,
 };
-use honeycomb::mesh::{write_mesh, Outputs, PolyMesh};
+use honeycomb::mesh::{Outputs, PolyMesh};
 use honeycomb::optimize::SECOND_TRY_MIN_EDGE;
+use honeycomb::pipeline::{pipeline, PipelineOptions, Step};
+use honeycomb::reciprocal::AcrossOptions;
 use honeycomb::report::Report;
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 /// How the hex mesh is made (shared by `init` and `pipeline`).
 #[derive(clap::Args, Clone)]
@@ -77,6 +80,7 @@ impl InitArgs {
             align,
             boundary: self.boundary,
             flattener: self.flatten.unwrap_or_default(),
+            view: None,
             seed: self.seed,
         };
         options.validate()?;
@@ -208,150 +212,78 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
                 .into(),
         ));
     }
-    let options = args.init.options()?;
-    args.opts.options()?;
+    let init = args.init.options()?;
+    let optimize = args.opts.options()?;
+    let walls = args.opts.walls()?;
+    if args.opts.light.is_some() {
+        return Err(Error::Parameter(
+            "--light prescribes axes from the base mesh's vertices, and pipeline makes its own \
+             mesh: run `init`, then `optimize --light`"
+                .into(),
+        ));
+    }
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
-    if args.output.exists() && !args.output.is_dir() {
-        return Err(Error::Parameter(format!(
-            "-o {}: exists and is not a directory",
-            args.output.display()
-        )));
-    }
-    let candidates = candidates(&options, args.init.flatten);
-    for (k, candidate) in candidates.iter().enumerate() {
-        let last = k + 1 == candidates.len();
-        let note = |what: String| {
-            if output == Output::Human {
-                // The field's own advice is what happens next.
-                let what = what.trim_end_matches("; try another seed");
-                eprintln!(
-                    "note: {}: {what}; trying the next {}",
-                    candidate.name, candidate.varies
-                );
-            }
-        };
-        let made = match make(&surface, &candidate.options, output) {
-            Ok(made) => made,
-            Err(e) if !last => {
-                note(e.to_string());
-                continue;
-            }
-            Err(e) => return Err(name_file(&args.surface, e)),
-        };
-        // The options that depend on the mesh are checked before anything is written.
-        let prepared = solve_options(&args.opts, &made.base, Some(&surface))?;
-        std::fs::create_dir_all(&args.output).map_err(|source| Error::Io {
-            path: args.output.clone(),
-            source,
-        })?;
-        // Before the solve, so that they are there to inspect whatever it gives.
-        let mut outputs = Outputs::new();
-        outputs.mesh(&args.output.join("initial.obj"), &made.base)?;
-        outputs.mesh(&args.output.join("surface.obj"), &surface)?;
-        stage_json(&mut outputs, &args.output.join("init.json"), &made.report)?;
-        outputs.commit()?;
-        if output == Output::Human {
-            print_report(&made, output, &args.output.join("initial.obj"))?;
-        }
-        let dir = &args.output;
-        match optimize_and_write(
-            &made.base,
-            Some(&surface),
-            &args.opts,
-            prepared,
-            dir,
-            BrokenCells::Drop,
-        ) {
-            Err(Error::Solver(m)) if !last => note(m),
-            Ok((report, settled)) => {
-                if let Some(settled) = settled {
-                    // The mesh the kept solve started from, so that `optimize` repeats it.
-                    write_mesh(&dir.join("initial.obj"), &settled)?;
-                }
-                if output == Output::Human {
-                    print_settling(&report);
-                }
-                return Ok(());
-            }
-            Err(e) => return Err(e),
-        }
-    }
-    unreachable!("the last candidate returns")
-}
-
-/// Seeds the pipeline tries with the field method.
-const FIELD_SEEDS: u64 = 2;
-
-/// One way the pipeline makes its hex mesh.
-struct Candidate {
-    /// For notes, as the option that picks it: `--seed 1`, `--flatten arap`.
-    name: String,
-    /// What the candidates differ in: `seed` or `flattening`.
-    varies: &'static str,
-    options: InitOptions,
-}
-
-/// The init options the pipeline tries in turn. Flatten without --flatten: the plan-view grid
-/// first (a honeycomb from the start wherever S does not fold over seen from above), then the
-/// ARAP one. Field: the seed, then the next one, whose singular points and dislocations fall
-/// elsewhere (at 750 cells seed 0 left crossed walls on inspired_mesh and the botanic garden
-/// that seed 1 did not, and the other way round on the negative shell).
-fn candidates(options: &InitOptions, flatten: Option<Flattener>) -> Vec<Candidate> {
-    let flattening = |flattener: Flattener| Candidate {
-        name: format!("--flatten {}", format!("{flattener:?}").to_lowercase()),
-        varies: "flattening",
-        options: InitOptions {
-            flattener,
-            ..options.clone()
-        },
+    let created = output_dir(&args.output)?;
+    let options = PipelineOptions {
+        init,
+        init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,
+        walls,
+        optimize,
+        // The second try only when the fairness is not the user's choice.
+        second_try: args.opts.w_fair.is_none(),
+        across: AcrossOptions::default(),
     };
-    match (options.method, flatten) {
-        (Method::Field, _) => (0..FIELD_SEEDS)
-            .map(|k| {
-                let seed = options.seed.wrapping_add(k);
-                Candidate {
-                    name: format!("--seed {seed}"),
-                    varies: "seed",
-                    options: InitOptions {
-                        seed,
-                        ..options.clone()
-                    },
-                }
-            })
-            .collect(),
-        (_, Some(f)) => vec![flattening(f)],
-        (_, None) => vec![flattening(Flattener::Project), flattening(Flattener::Arap)],
+    let mut bar = IterationBar::new(output, options.optimize.solver.max_iterations);
+    let spinner = std::cell::RefCell::new(None::<Spinner>);
+    let start = Instant::now();
+    let result = pipeline(&surface, &options, &mut |step| match step {
+        Step::Init => *spinner.borrow_mut() = Some(Spinner::new(output, "making the hex mesh")),
+        step => {
+            if let Some(s) = spinner.borrow_mut().take() {
+                s.finish();
+            }
+            bar.step(step)
+        }
+    });
+    if let Some(s) = spinner.borrow_mut().take() {
+        s.finish();
     }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn names(c: &[Candidate]) -> Vec<&str> {
-        c.iter().map(|c| c.name.as_str()).collect()
+    bar.finish();
+    let made = match result {
+        Ok(made) => made,
+        Err(e) => {
+            if created {
+                let _ = std::fs::remove_dir(&args.output);
+            }
+            return Err(name_file(&args.surface, e));
+        }
+    };
+    let mut report = made.report;
+    report.seconds = start.elapsed().as_secs_f64();
+    let dir = &args.output;
+    let mut outputs = Outputs::new();
+    // The mesh the kept solve started from, so that `optimize` repeats it.
+    outputs.mesh(&dir.join("initial.obj"), &made.base)?;
+    outputs.mesh(&dir.join("surface.obj"), &surface)?;
+    stage_json(
+        &mut outputs,
+        &dir.join("init.json"),
+        &made.initialized.report,
+    )?;
+    outputs.commit()?;
+    honeycomb::export::write_structure(dir, &made.optimized.honeycomb, &report)?;
+    if output == Output::Human {
+        print_report(&made.initialized, output, &dir.join("initial.obj"))?;
+        print_settling(&report);
     }
-
-    /// Field: the seed, then the next (wrapping); flatten: plan view, then ARAP, unless
-    /// --flatten names one.
-    #[test]
-    fn the_pipeline_tries_seeds_or_flattenings_in_turn() {
-        let field = InitOptions {
-            method: Method::Field,
-            seed: u64::MAX,
-            ..InitOptions::new(CellSize::Cells(750))
-        };
-        let tried = candidates(&field, None);
-        assert_eq!(names(&tried), ["--seed 18446744073709551615", "--seed 0"]);
-        assert_eq!(tried[1].options.seed, 0);
-        assert!(tried.iter().all(|c| c.varies == "seed"));
-        let flat = InitOptions::new(CellSize::Cells(750));
-        let tried = candidates(&flat, None);
-        assert_eq!(names(&tried), ["--flatten project", "--flatten arap"]);
-        assert_eq!(tried[0].options.flattener, Flattener::Project);
-        let chosen = candidates(&flat, Some(Flattener::Lscm));
-        assert_eq!(names(&chosen), ["--flatten lscm"]);
-        assert_eq!(chosen[0].options.flattener, Flattener::Lscm);
-    }
+    print_notes(&made.notes, output);
+    finish(
+        &report,
+        &made.optimized,
+        dir,
+        output,
+        args.opts.cell_points,
+        0,
+    )
 }

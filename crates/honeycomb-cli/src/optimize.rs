@@ -8,15 +8,15 @@ use honeycomb::mesh::{
     nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
 };
 use honeycomb::optimize::{
-    optimize, optimize_made_mesh, shading_axes, unit_light, AxesOptions, OptimizeOptions,
-    ParallelOptions, QuadOptions, QuadPattern, WallNormals, Weights,
+    optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, Optimized, ParallelOptions,
+    QuadOptions, QuadPattern, WallNormals, Weights,
 };
+use honeycomb::pipeline::{solve_base, Walls};
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
 use honeycomb::structure::{measure, thickest_uncrossed};
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result, Vec3};
-use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -130,6 +130,16 @@ pub struct SolveArgs {
     /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
     #[arg(long, default_value_t = Weights::default().guide, allow_negative_numbers = true)]
     pub w_guide: f64,
+    /// How the walls stand on the surface: `across` (node axes as close to its normals as a
+    /// honeycomb allows, cells of one size), `uniform` (every axis along its mean normal) or a
+    /// direction DX,DY,DZ for every axis (vertical walls on a roof: 0,0,1) [default: across;
+    /// not with --parallel, --quads, --axes or --light].
+    #[arg(
+        long,
+        value_name = "across|uniform|DX,DY,DZ",
+        allow_hyphen_values = true
+    )]
+    pub walls: Option<String>,
     /// Initial regularization eps (normalized frame); it shrinks as steps succeed.
     #[arg(long, default_value_t = SolverOptions::default().eps, allow_negative_numbers = true)]
     pub eps: f64,
@@ -144,6 +154,27 @@ pub struct SolveArgs {
 impl SolveArgs {
     pub fn output(&self) -> Output {
         Output::from_flags(self.quiet, self.json)
+    }
+
+    /// The variants solve their own way (the guided projection from the base mesh as given).
+    pub fn is_variant(&self) -> bool {
+        self.parallel || self.quads.is_some() || self.axes.is_some() || self.light.is_some()
+    }
+
+    /// `--walls`, checked: `across` unless given; refused with a variant.
+    pub fn walls(&self) -> Result<Walls> {
+        let Some(text) = &self.walls else {
+            return Ok(Walls::Across);
+        };
+        if self.is_variant() {
+            return Err(Error::Parameter(
+                "--walls shapes the plain honeycomb; --parallel, --quads, --axes and --light \
+                 solve from the base mesh as given"
+                    .into(),
+            ));
+        }
+        text.parse()
+            .map_err(|m: String| Error::Parameter(format!("--walls {m}")))
     }
 
     /// The options that do not depend on the input meshes, checked.
@@ -227,8 +258,8 @@ impl SolveArgs {
                 )));
             }
         }
-        let variant =
-            self.parallel || self.quads.is_some() || self.axes.is_some() || self.light.is_some();
+        let variant = self.is_variant();
+        self.walls()?;
         if self.cell_points && variant {
             return Err(Error::Parameter(
                 "--cell-points: only for the plain honeycomb (not with --parallel, --quads, \
@@ -379,15 +410,6 @@ pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
     Ok(loaded.mesh)
 }
 
-/// What happens to boundary cells that the solve breaks (collapsed cap, mirrored node, crossed
-/// wall): a designer's base mesh is solved as given; a mesh `pipeline` made loses them, and
-/// gets a second try without the fairness if the first gives no honeycomb.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BrokenCells {
-    Keep,
-    Drop,
-}
-
 /// What a solve of one base mesh runs with: its options, every one checked (against the mesh
 /// too), and the sun path (`--sun-path`, empty without it).
 pub struct Prepared {
@@ -411,24 +433,9 @@ pub fn solve_options(
     Ok(Prepared { options, sun_path })
 }
 
-/// How a made mesh settled (`pipeline`): what `report.json` adds for it.
-struct Settling {
-    dropped_cells: usize,
-    solves: usize,
-    second_try: bool,
-    per_edge_fallback: bool,
-}
-
-/// Optimizes, measures, writes the structure directory and prints the result.
-pub fn optimize_and_write(
-    base: &PolyMesh,
-    surface: Option<&PolyMesh>,
-    args: &SolveArgs,
-    prepared: Prepared,
-    dir: &Path,
-    broken: BrokenCells,
-) -> Result<(Report, Option<PolyMesh>)> {
-    // Before the solve, so that an unusable -o fails at once, not after a long run.
+/// `-o DIR` for a structure directory: refused if it is a file; created. Returns whether it
+/// was made now (so that a failure before any output can remove it again).
+pub fn output_dir(dir: &Path) -> Result<bool> {
     if dir.exists() && !dir.is_dir() {
         return Err(Error::Parameter(format!(
             "-o {}: exists and is not a directory",
@@ -440,8 +447,21 @@ pub fn optimize_and_write(
         path: dir.to_path_buf(),
         source,
     })?;
-    let Prepared { options, sun_path } = prepared;
-    let result = solve_and_write(base, surface, args, dir, broken, options, &sun_path);
+    Ok(created)
+}
+
+/// Optimizes a designer's base mesh (`optimize`, `demo`), writes the structure directory and
+/// prints the result.
+pub fn optimize_and_write(
+    base: &PolyMesh,
+    surface: Option<&PolyMesh>,
+    args: &SolveArgs,
+    prepared: Prepared,
+    dir: &Path,
+) -> Result<Report> {
+    // Before the solve, so that an unusable -o fails at once, not after a long run.
+    let created = output_dir(dir)?;
+    let result = solve_and_write(base, surface, args, dir, prepared);
     if result.is_err() && created {
         // A directory made for outputs that never came (a failure before any was written);
         // remove_dir leaves one that has files.
@@ -456,10 +476,8 @@ fn solve_and_write(
     surface: Option<&PolyMesh>,
     args: &SolveArgs,
     dir: &Path,
-    broken: BrokenCells,
-    options: OptimizeOptions,
-    sun_path: &[Vec3],
-) -> Result<(Report, Option<PolyMesh>)> {
+    prepared: Prepared,
+) -> Result<Report> {
     let output = args.output();
     let nonconvex = nonconvex_faces(base);
     if !nonconvex.is_empty() {
@@ -471,52 +489,29 @@ fn solve_and_write(
             nonconvex[0]
         );
     }
-    let bar = IterationBar::new(output, options.solver.max_iterations);
+    let Prepared { options, sun_path } = prepared;
+    let mut bar = IterationBar::new(output, options.solver.max_iterations);
     let start = Instant::now();
     let model_surface = Surface::from_mesh(surface.unwrap_or(base))?;
-    let (optimized, measures, base, settled) = match (broken, surface) {
-        (BrokenCells::Drop, Some(surface)) => {
-            // The second try only when the fairness is not the user's choice.
-            let second_try = args.w_fair.is_none();
-            let result =
-                optimize_made_mesh(base, surface, &options, second_try, &mut |attempt, info| {
-                    if info.iteration == 1
-                        && (attempt.solve > 1 || attempt.second_try || attempt.per_edge)
-                    {
-                        bar.restart(attempt);
-                    }
-                    bar.update(info)
-                });
-            bar.finish();
-            let made = result?;
-            let s = made.settled;
-            let settling = Settling {
-                dropped_cells: s.dropped_cells,
-                solves: s.solves,
-                second_try: made.second_try,
-                per_edge_fallback: made.per_edge_fallback,
-            };
-            (s.optimized, s.measures, Cow::Owned(s.base), Some(settling))
-        }
-        _ => {
-            let result = optimize(base, surface, &options, &mut |info| bar.update(info));
-            bar.finish();
-            let optimized = result?;
-            let measures = measure(&optimized.honeycomb, &model_surface);
-            (optimized, measures, Cow::Borrowed(base), None)
-        }
+    let (optimized, mut report, notes) = if args.is_variant() {
+        let result = optimize(base, surface, &options, &mut |info| bar.update(info));
+        bar.finish();
+        let optimized = result?;
+        let measures = measure(&optimized.honeycomb, &model_surface);
+        let report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
+        (optimized, report, Vec::new())
+    } else {
+        let result = solve_base(base, surface, args.walls()?, &options, &mut |step| {
+            bar.step(step)
+        });
+        bar.finish();
+        let (solved, notes) = result?;
+        (solved.optimized, solved.report, notes)
     };
-    let seconds = start.elapsed().as_secs_f64();
-    let mut report = Report::new(&optimized, &measures, seconds);
-    if let Some(s) = settled {
-        report.dropped_boundary_cells = Some(s.dropped_cells);
-        report.solves = Some(s.solves);
-        report.second_try = Some(s.second_try);
-        report.per_edge_fallback = Some(s.per_edge_fallback);
-    }
+    report.seconds = start.elapsed().as_secs_f64();
     if let Some(light) = args.light {
         let before = extruded_along_normals(
-            &base,
+            base,
             &optimized.connectivity,
             &model_surface,
             optimized.honeycomb.thickness,
@@ -525,20 +520,63 @@ fn solve_and_write(
             &before,
             &optimized.honeycomb,
             light,
-            sun_path,
+            &sun_path,
         ));
     }
     let quads: Vec<(&str, &PolyMesh)> = optimized.quads.iter().map(|q| ("quads.obj", q)).collect();
     honeycomb::export::write_structure_with(dir, &optimized.honeycomb, &quads, &report)?;
+    print_notes(&notes, output);
+    finish(
+        &report,
+        &optimized,
+        dir,
+        output,
+        args.cell_points,
+        nonconvex.len(),
+    )?;
+    Ok(report)
+}
+
+/// Notes of what a run changed on the way, on stderr.
+pub fn print_notes(notes: &[String], output: Output) {
+    if output == Output::Human {
+        for note in notes {
+            eprintln!("note: {note}");
+        }
+    }
+}
+
+/// Prints a written result (its Figure 16 row and how the walls stand, or the JSON report) and
+/// fails if it is no honeycomb.
+pub fn finish(
+    report: &Report,
+    optimized: &Optimized,
+    dir: &Path,
+    output: Output,
+    cell_points_asked: bool,
+    nonconvex_cells: usize,
+) -> Result<()> {
     match output {
         Output::Json => println!(
             "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| Error::Parameter(e.to_string()))?
+            serde_json::to_string_pretty(report).map_err(|e| Error::Parameter(e.to_string()))?
         ),
         Output::Human => {
             println!("{}", Report::FIGURE16_HEADER);
             println!("{}", report.figure16_row());
-            if !report.converged {
+            let m = &report.measures;
+            println!(
+                "walls {}: axis to normal {:.2} deg mean, {:.2} p95 (parallel axes {:.2}, {:.2}); \
+                 edge cv {:.3}; {} iterations in all",
+                walls_label(&report.walls),
+                m.axis_normal_deg.mean,
+                m.axis_normal_deg.p95,
+                m.parallel_baseline_deg.mean,
+                m.parallel_baseline_deg.p95,
+                m.edge_length_cv,
+                report.iterations_total
+            );
+            if !report.converged && report.walls != Walls::Across {
                 eprintln!(
                     "note: not converged to tolerance in {} iterations (largest residual {:.1e}); \
                      more --iterations may help",
@@ -569,19 +607,16 @@ fn solve_and_write(
             // the other formulation takes another path.
             if report.wall_normals == WallNormals::CellPoints
                 && report.per_edge_fallback.is_none()
-                && !args.cell_points
+                && !cell_points_asked
             {
                 ", and so may --per-edge-normals"
             } else {
                 ""
             },
-            if nonconvex.is_empty() {
+            if nonconvex_cells == 0 {
                 String::new()
             } else {
-                format!(
-                    "; {} cells of the base mesh are not convex",
-                    nonconvex.len()
-                )
+                format!("; {nonconvex_cells} cells of the base mesh are not convex")
             },
             match report.measures.nonconvex_walls {
                 0 => String::new(),
@@ -603,11 +638,16 @@ fn solve_and_write(
             }
         )));
     }
-    let dropped = match base {
-        Cow::Owned(base) if report.dropped_boundary_cells > Some(0) => Some(base),
-        _ => None,
-    };
-    Ok((report, dropped))
+    Ok(())
+}
+
+/// `across`, `uniform` or `x,y,z`.
+pub fn walls_label(walls: &Walls) -> String {
+    match walls {
+        Walls::Across => "across".into(),
+        Walls::Uniform => "uniform".into(),
+        Walls::Direction(d) => honeycomb::error::short_vector(*d),
+    }
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -626,15 +666,7 @@ pub fn run(args: Args) -> Result<()> {
         None => None,
     };
     let prepared = solve_options(&args.opts, &base, surface.as_ref())?;
-    optimize_and_write(
-        &base,
-        surface.as_ref(),
-        &args.opts,
-        prepared,
-        &args.output,
-        BrokenCells::Keep,
-    )
-    .map(|_| ())
+    optimize_and_write(&base, surface.as_ref(), &args.opts, prepared, &args.output).map(|_| ())
 }
 
 /// Prefixes a mesh validation error with the file it is about.

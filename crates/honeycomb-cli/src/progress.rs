@@ -1,6 +1,6 @@
 //! How a long run talks to the terminal: a progress bar, nothing (`--quiet`), or JSON on stdout.
 
-use honeycomb::optimize::Attempt;
+use honeycomb::pipeline::Step;
 use honeycomb::solve::IterationInfo;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -23,9 +23,14 @@ impl Output {
     }
 }
 
-/// A bar over the solver's iterations (drawn on stderr, hidden when not a terminal).
+/// A bar over the solver's iterations (drawn on stderr, hidden when not a terminal). Each
+/// solve of a run (fitting the node axes, placing the vertices, a guided projection, a retry)
+/// restarts it under its own name.
 pub struct IterationBar {
     bar: Option<ProgressBar>,
+    /// The solve shown: its name and number.
+    current: Option<(String, usize)>,
+    length: u64,
 }
 
 impl IterationBar {
@@ -40,28 +45,43 @@ impl IterationBar {
             bar.set_prefix("optimizing");
             bar
         });
-        IterationBar { bar }
+        IterationBar {
+            bar,
+            current: None,
+            length: iterations as u64,
+        }
     }
 
     pub fn update(&self, info: &IterationInfo) {
         if let Some(bar) = &self.bar {
+            if info.iteration as u64 > bar.length().unwrap_or(0) {
+                bar.set_length(info.iteration as u64);
+            }
             bar.set_position(info.iteration as u64);
             bar.set_message(format!("residual {:.1e}", info.max_residual));
         }
     }
 
-    /// A new solve begins: after broken boundary cells were dropped, or the second try.
-    pub fn restart(&self, attempt: Attempt) {
-        if let Some(bar) = &self.bar {
-            let again = match (attempt.per_edge, attempt.second_try) {
-                (false, false) => "",
-                (false, true) => ", second try",
-                (true, false) => ", normals per edge",
-                (true, true) => ", normals per edge, second try",
-            };
-            bar.set_prefix(format!("optimizing (solve {}{again})", attempt.solve));
-            bar.set_position(0);
+    /// A step of a pipeline: a new solve restarts the bar under its name.
+    pub fn step(&mut self, step: Step) {
+        let Step::Iteration(name, solve, info) = step else {
+            return;
+        };
+        let this = (name.to_string(), solve);
+        if self.current.as_ref() != Some(&this) {
+            if let Some(bar) = &self.bar {
+                let number = if solve > 1 {
+                    format!(" (solve {solve})")
+                } else {
+                    String::new()
+                };
+                bar.set_prefix(format!("{name}{number}"));
+                bar.set_length(self.length);
+                bar.set_position(0);
+            }
+            self.current = Some(this);
         }
+        self.update(info);
     }
 
     pub fn finish(&self) {

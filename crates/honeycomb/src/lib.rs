@@ -15,6 +15,8 @@ pub mod interactive;
 pub mod mesh;
 pub mod optimize;
 pub mod parallel;
+pub mod pipeline;
+pub mod reciprocal;
 pub mod render;
 pub mod report;
 pub mod solve;

@@ -2,6 +2,7 @@
 
 use crate::analysis::ShadingReport;
 use crate::optimize::{Optimized, WallNormals, Weights};
+use crate::pipeline::Walls;
 use crate::solve::{FamilyResidual, IterationInfo};
 use crate::structure::{
     axes_measures, parallel_measures, quad_mesh_measures, AxesMeasures, FaceMeasures, Honeycomb,
@@ -11,10 +12,17 @@ use serde::Serialize;
 
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
+    /// How the walls stand on S: `"across"`, `"uniform"` or a direction `[x, y, z]`.
+    pub walls: Walls,
     pub vertices: usize,
     pub edges: usize,
     pub faces: usize,
     pub iterations: usize,
+    /// Solver iterations of every solve and every try that led here.
+    pub iterations_total: usize,
+    /// Walls across S: the iterations of the node axes' fit among them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub axis_field_iterations: Option<usize>,
     /// The solver's residuals fell below its tolerance.
     pub converged: bool,
     /// The realized structure meets the honeycomb tolerances (see `is_honeycomb`).
@@ -86,11 +94,14 @@ impl Report {
         let honeycomb =
             m.omega_max_deg <= Self::OMEGA_TOLERANCE_DEG && m.delta_max <= Self::DELTA_TOLERANCE;
         Report {
+            walls: Walls::Uniform,
             honeycomb,
             vertices: opt.honeycomb.base.vertices.len(),
             edges: opt.honeycomb.edges.len(),
             faces: opt.honeycomb.base.faces.len(),
             iterations: s.iterations,
+            iterations_total: s.iterations,
+            axis_field_iterations: None,
             converged: s.converged,
             measures: m.clone(),
             thickness: opt.honeycomb.thickness,

@@ -74,26 +74,32 @@ pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -
     (0..h.base.faces.len()).filter(|&f| broken[f]).collect()
 }
 
+/// The vertices of `mesh` that some face outside `drop` (sorted) uses, in order: vertex `k` of
+/// [`without_cells`] is `kept_vertices(..)[k]`.
+pub fn kept_vertices(mesh: &PolyMesh, drop: &[usize]) -> Vec<usize> {
+    let mut used = vec![false; mesh.vertices.len()];
+    for (f, face) in mesh.faces.iter().enumerate() {
+        if drop.binary_search(&f).is_err() {
+            for &v in face {
+                used[v] = true;
+            }
+        }
+    }
+    (0..mesh.vertices.len()).filter(|&v| used[v]).collect()
+}
+
 /// `mesh` without the faces `drop` (sorted) and the vertices no other face uses; the order of
 /// the rest is kept. In a trivalent mesh every remaining vertex keeps valence 2 or 3.
 pub fn without_cells(mesh: &PolyMesh, drop: &[usize]) -> PolyMesh {
-    let kept: Vec<&Vec<usize>> = (0..mesh.faces.len())
-        .filter(|f| drop.binary_search(f).is_err())
-        .map(|f| &mesh.faces[f])
-        .collect();
-    let mut used = vec![false; mesh.vertices.len()];
-    for &v in kept.iter().copied().flatten() {
-        used[v] = true;
-    }
+    let kept = kept_vertices(mesh, drop);
     let mut index = vec![usize::MAX; mesh.vertices.len()];
-    let mut vertices = Vec::new();
-    for v in (0..mesh.vertices.len()).filter(|&v| used[v]) {
-        index[v] = vertices.len();
-        vertices.push(mesh.vertices[v]);
+    for (k, &v) in kept.iter().enumerate() {
+        index[v] = k;
     }
-    let faces = kept
-        .into_iter()
-        .map(|f| f.iter().map(|&v| index[v]).collect())
+    let vertices = kept.iter().map(|&v| mesh.vertices[v]).collect();
+    let faces = (0..mesh.faces.len())
+        .filter(|f| drop.binary_search(f).is_err())
+        .map(|f| mesh.faces[f].iter().map(|&v| index[v]).collect())
         .collect();
     PolyMesh::new(vertices, faces)
 }

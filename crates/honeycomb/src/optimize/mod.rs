@@ -10,7 +10,8 @@ mod variants;
 mod weights;
 
 pub use broken_cells::{
-    broken_boundary_cells, optimize_dropping_broken_cells, without_cells, Settled,
+    broken_boundary_cells, kept_vertices, optimize_dropping_broken_cells, without_cells, Settled,
+    MAX_DROPPED_SHARE,
 };
 pub use frame::Frame;
 pub use made_mesh::{optimize_made_mesh, Attempt, MadeMeshResult};
@@ -136,7 +137,8 @@ impl OptimizeOptions {
         }
     }
 
-    fn is_variant(&self) -> bool {
+    /// Parallel meshes, quads or prescribed axes: solved from the base mesh as given.
+    pub fn is_variant(&self) -> bool {
         self.parallel.is_some() || self.axes.is_some() || self.quads.is_some()
     }
 

@@ -1,0 +1,207 @@
+//! A honeycomb whose node axes follow S's normals as closely as a honeycomb allows: the sheet
+//! fitted to the normals, the base mesh placed on its walls, and boundary cells that placement
+//! breaks dropped (the sheet of the rest is the same sheet, so placement alone is repeated).
+
+use super::{fit_axis_field, place, AxisFieldOptions, PlacementOptions, Sheet};
+use crate::error::Result;
+use crate::geometry::Vec3;
+use crate::mesh::{validate_base_mesh, Connectivity, PolyMesh};
+use crate::optimize::{broken_boundary_cells, kept_vertices, without_cells, Frame};
+use crate::solve::{IterationInfo, SolveReport};
+use crate::structure::{measure, Honeycomb, Measures};
+use crate::surface::Surface;
+
+#[derive(Clone, Debug)]
+pub struct AcrossOptions {
+    pub field: AxisFieldOptions,
+    pub placement: PlacementOptions,
+    /// Distance between M and M' (model units); `None`: 0.3 mean edge lengths.
+    pub thickness: Option<f64>,
+    /// Rounds of dropping broken boundary cells at most.
+    pub max_drops: usize,
+    /// At most this share of the cells is dropped.
+    pub max_dropped_share: f64,
+}
+
+impl Default for AcrossOptions {
+    fn default() -> Self {
+        AcrossOptions {
+            field: AxisFieldOptions::default(),
+            placement: PlacementOptions::default(),
+            thickness: None,
+            max_drops: 3,
+            max_dropped_share: crate::optimize::MAX_DROPPED_SHARE,
+        }
+    }
+}
+
+/// What [`walls_across`] made.
+pub struct Across {
+    pub honeycomb: Honeycomb,
+    pub connectivity: Connectivity,
+    /// The base mesh the kept result started from (without dropped cells), model units.
+    pub base: PolyMesh,
+    pub measures: Measures,
+    pub dropped_cells: usize,
+    /// Iterations of the sheet's fit and of every placement.
+    pub field_iterations: usize,
+    pub placement_iterations: usize,
+    /// Every solve, one after the other (the sheet's fits, then the placements).
+    pub solve: SolveReport,
+    /// The sheet's walls reached unit length.
+    pub field_converged: bool,
+}
+
+/// Which solve an iteration belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    AxisField,
+    Placement,
+}
+
+/// A honeycomb on `base` (a valid base mesh on `surface`, both in model units) with walls
+/// across `surface`, measured against `model_surface` (the same surface).
+pub fn walls_across(
+    base: &PolyMesh,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    options: &AcrossOptions,
+    progress: &mut dyn FnMut(Stage, &IterationInfo),
+) -> Result<Across> {
+    let frame = Frame::of(base);
+    let normalized = Surface::from_mesh(&frame.to_normalized(surface))?;
+    let allowed = (options.max_dropped_share * base.faces.len() as f64).floor() as usize;
+    let mut model_base = base.clone();
+    let mut mesh = frame.to_normalized(base);
+    let mut conn = validate_base_mesh(&mesh)?;
+    let mut sheet = Sheet::new(&mesh, &conn)?;
+    let mut points = sheet.initial_points(&mesh, &conn, |p| normalized.normal_at(p));
+    let (mut field_iterations, mut placement_iterations, mut dropped_cells) = (0, 0, 0);
+    let mut solves: Option<SolveReport> = None;
+    let mut chain = |next: SolveReport| {
+        solves = Some(match solves.take() {
+            Some(s) => s.then(next),
+            None => next,
+        })
+    };
+    let mut drops = 0;
+    loop {
+        let targets: Vec<Vec3> = mesh
+            .vertices
+            .iter()
+            .map(|&p| normalized.normal_at(p))
+            .collect();
+        let edges: Vec<Vec3> = conn
+            .edges
+            .iter()
+            .map(|&[a, b]| (mesh.vertices[a] - mesh.vertices[b]).normalized())
+            .collect();
+        let field = fit_axis_field(
+            &sheet,
+            &points,
+            &targets,
+            &edges,
+            &options.field,
+            &mut |i| progress(Stage::AxisField, i),
+        )?;
+        field_iterations += field.solve.iterations;
+        let field_converged = field.solve.converged;
+        chain(field.solve);
+        points = field.points;
+        let placed = place(
+            &mesh,
+            &conn,
+            &sheet,
+            &points,
+            &normalized,
+            &options.placement,
+            &mut |i| progress(Stage::Placement, i),
+        )?;
+        placement_iterations += placed.solve.iterations;
+        chain(placed.solve);
+        let vertices = placed.vertices.iter().map(|&p| frame.to_model(p)).collect();
+        let thickness = options.thickness.unwrap_or(0.3 * frame.unit);
+        let honeycomb = Honeycomb::new(
+            PolyMesh::new(vertices, mesh.faces.clone()),
+            &conn,
+            placed.axes,
+            thickness,
+        );
+        let measures = measure(&honeycomb, model_surface);
+        let broken = broken_boundary_cells(&honeycomb, &conn, &measures);
+        if broken.is_empty() || drops == options.max_drops || dropped_cells + broken.len() > allowed
+        {
+            return Ok(Across {
+                honeycomb,
+                connectivity: conn,
+                base: model_base,
+                measures,
+                dropped_cells,
+                field_iterations,
+                placement_iterations,
+                solve: solves.take().expect("a solve ran"),
+                field_converged,
+            });
+        }
+        // The same sheet without the broken cells: each dropped cell's point becomes the ghost
+        // of the walls it bordered.
+        let kept = kept_vertices(&mesh, &broken);
+        let rest = without_cells(&mesh, &broken);
+        let rest_conn = validate_base_mesh(&rest)?;
+        let rest_sheet = Sheet::new(&rest, &rest_conn)?;
+        points = inherited_points(
+            &conn,
+            &sheet,
+            &points,
+            &broken,
+            &kept,
+            &rest_conn,
+            &rest_sheet,
+        );
+        model_base = without_cells(&model_base, &broken);
+        mesh = rest;
+        conn = rest_conn;
+        sheet = rest_sheet;
+        dropped_cells += broken.len();
+        drops += 1;
+    }
+}
+
+/// The points of `rest_sheet` (the sheet of the mesh without the cells `dropped`, whose vertex
+/// `k` was `kept[k]`) taken from `points` of `sheet`: kept cells keep theirs, each ghost takes
+/// the mean of the old points across its walls.
+fn inherited_points(
+    conn: &Connectivity,
+    sheet: &Sheet,
+    points: &[Vec3],
+    dropped: &[usize],
+    kept: &[usize],
+    rest_conn: &Connectivity,
+    rest_sheet: &Sheet,
+) -> Vec<Vec3> {
+    let kept_cells: Vec<usize> = (0..sheet.cells)
+        .filter(|f| dropped.binary_search(f).is_err())
+        .collect();
+    let mut new_points: Vec<Vec3> = kept_cells.iter().map(|&f| points[f]).collect();
+    let mut sums = vec![(Vec3::ZERO, 0usize); rest_sheet.ghosts];
+    for (e, &[a, b]) in rest_conn.edges.iter().enumerate() {
+        let (old_a, old_b) = (kept[a], kept[b]);
+        let Some(&old_e) = conn.vertex_edges[old_a]
+            .iter()
+            .find(|&&e| conn.edges[e].contains(&old_b))
+        else {
+            continue;
+        };
+        // Both connectivities store an edge from its lower vertex, and the kept vertices keep
+        // their order: the sides correspond slot by slot.
+        for slot in 0..2 {
+            let p = rest_sheet.sides[e][slot];
+            if p >= rest_sheet.cells {
+                let s = &mut sums[p - rest_sheet.cells];
+                *s = (s.0 + points[sheet.sides[old_e][slot]], s.1 + 1);
+            }
+        }
+    }
+    new_points.extend(sums.iter().map(|&(s, k)| s / k.max(1) as f64));
+    new_points
+}

@@ -1,0 +1,187 @@
+//! The node axes designed first: a sheet of unit triangles (every wall a unit difference of
+//! cell points) whose normals fit target axes, solved on the sheet's points alone.
+//!
+//! Each node's triangle is a rigid copy of one unit triangle, turned by a rotation of its own
+//! (`RigidTriangles`); the solve asks neighbouring triangles to agree on their shared points.
+//! Solved with unit distances between the points instead, a step that bends the sheet far
+//! stretches it to second order, and the iteration crawls; a rotation turns a triangle far
+//! without stretching it. The rotations are eliminated before each factorization (no row
+//! joins two of them), so the factor is over the points only.
+
+use super::Sheet;
+use crate::constraints::{OrthogonalDifference, RigidTriangles, SharedRotations};
+use crate::error::Result;
+use crate::geometry::rotation::{frame, multiply, Matrix3};
+use crate::geometry::Vec3;
+use crate::solve::{
+    Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
+};
+
+/// How the sheet is fitted.
+#[derive(Clone, Debug)]
+pub struct AxisFieldOptions {
+    pub iterations: usize,
+    /// Weight of the rigid triangles (the honeycomb's condition).
+    pub rigid: f64,
+    /// Weight of the axes along their targets, at the start; it fades.
+    pub axes: f64,
+    /// Weight of the walls across the base mesh's edges, at the start; it fades.
+    pub across: f64,
+    /// The factor the two fitting weights fade by per iteration.
+    pub fade: f64,
+    pub eps: f64,
+    /// The factor a step may multiply the energy by before it is halved: close to 1, since
+    /// the sheet's rows bend it far and a step the linearization overrates only wanders.
+    pub energy_growth: f64,
+    /// The sheet is done when every squared wall length is this close to 1.
+    pub tolerance: f64,
+}
+
+impl Default for AxisFieldOptions {
+    fn default() -> Self {
+        AxisFieldOptions {
+            iterations: 40,
+            rigid: 10.0,
+            axes: 1.0,
+            across: 1.0,
+            fade: 0.5,
+            eps: 1e-3,
+            energy_growth: 1.1,
+            tolerance: 1e-7,
+        }
+    }
+}
+
+/// The fitted sheet.
+pub struct AxisField {
+    pub points: Vec<Vec3>,
+    pub solve: SolveReport,
+}
+
+/// The largest `| |p_a - p_b|^2 - 1 |` over `pairs` of the points in `y`.
+fn max_gap(y: &[f64], pairs: &[[usize; 2]]) -> f64 {
+    pairs.iter().fold(0.0f64, |m, &[a, b]| {
+        let d = Vec3::from_slice(&y[3 * a..]) - Vec3::from_slice(&y[3 * b..]);
+        m.max((d.norm_squared() - 1.0).abs())
+    })
+}
+
+/// The corners of the reference triangle: unit sides, in z = 0, counterclockwise.
+fn reference_corner(k: usize) -> Vec3 {
+    let a = std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::FRAC_PI_3 * k as f64;
+    Vec3::new(a.cos(), a.sin(), 0.0) / 3f64.sqrt()
+}
+
+/// The rotation that turns the reference triangle, whose first side is `first_side`, towards
+/// triangle `p`: its first side along `p`'s, its normal along `p`'s.
+fn fitted_rotation(p: [Vec3; 3], first_side: Vec3) -> Matrix3 {
+    let n = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
+    let t = (p[1] - p[0]).normalized();
+    let r = frame(first_side.normalized(), Vec3::new(0.0, 0.0, 1.0));
+    let back: Matrix3 = std::array::from_fn(|i| std::array::from_fn(|j| r[j][i]));
+    multiply(&frame(t, n), &back)
+}
+
+/// Fits `sheet`, from `points`, to one target axis per vertex (`targets`, unit), keeping each
+/// wall across its edge, whose direction in the base mesh is `edges[e]` (unit, or zero for
+/// none).
+pub fn fit_axis_field(
+    sheet: &Sheet,
+    points: &[Vec3],
+    targets: &[Vec3],
+    edges: &[Vec3],
+    options: &AxisFieldOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<AxisField> {
+    let (np, nt) = (points.len(), sheet.triangles.len());
+    let sides: [Vec3; 3] = std::array::from_fn(|k| reference_corner(k + 1) - reference_corner(k));
+    let bases = SharedRotations::new(
+        sheet
+            .triangles
+            .iter()
+            .map(|t| fitted_rotation(t.map(|p| points[p]), sides[0]))
+            .collect(),
+    );
+    // A node's axis along its target: both sides of its triangle from its first point
+    // orthogonal to it.
+    let axis_rows = sheet
+        .triangles
+        .iter()
+        .zip(targets)
+        .flat_map(|(&[a, b, c], &t)| [([b, a], t), ([c, a], t)])
+        .collect();
+    let across_rows = sheet
+        .sides
+        .iter()
+        .zip(edges)
+        .filter(|(_, d)| d.norm() > 0.0)
+        .map(|(&s, &d)| (s, d))
+        .collect();
+    let guide = |name, rows, weight| OrthogonalDifference {
+        name,
+        rows,
+        weight,
+        role: Role::Guide,
+        fade: options.fade,
+    };
+    let mut families: Vec<Box<dyn Constraint>> = vec![
+        Box::new(RigidTriangles {
+            triangles: sheet.triangles.clone(),
+            rotations: np,
+            bases: bases.clone(),
+            sides,
+            weight: options.rigid,
+        }),
+        Box::new(guide("axes_along_targets", axis_rows, options.axes)),
+    ];
+    if options.across > 0.0 {
+        families.push(Box::new(guide(
+            "walls_across_edges",
+            across_rows,
+            options.across,
+        )));
+    }
+    let mut positions: Vec<Option<Vec3>> = points.iter().map(|&p| Some(p)).collect();
+    positions.extend(
+        sheet
+            .triangles
+            .iter()
+            .map(|t| Some((points[t[0]] + points[t[1]] + points[t[2]]) / 3.0)),
+    );
+    let rotation_blocks: Vec<usize> = (np..np + nt).collect();
+    let mut solver =
+        GuidedProjection::eliminating(3 * (np + nt), families, Some(&positions), &rotation_blocks)?;
+    let mut y: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+    y.resize(3 * (np + nt), 0.0);
+    let solver_options = SolverOptions {
+        max_iterations: options.iterations,
+        eps: options.eps,
+        // Done by the walls' lengths, below: the rows of the fit never vanish.
+        tolerance: 0.0,
+        energy_growth: options.energy_growth,
+        ..SolverOptions::default()
+    };
+    let pairs = sheet.unit_pairs();
+    let mut state = SolveState::new(options.eps);
+    let mut met = max_gap(&y, &pairs) < options.tolerance;
+    while !met && state.iterations() < options.iterations {
+        match solver.iterate(&mut y, &mut state, &solver_options)? {
+            Some(info) => progress(&info),
+            None => break,
+        }
+        // The step's turns into the base rotations: the next linearization is at zero turn.
+        let turns: Vec<Vec3> = (0..nt)
+            .map(|t| Vec3::from_slice(&y[3 * (np + t)..]))
+            .collect();
+        bases.rebase(&turns);
+        y[3 * np..].fill(0.0);
+        met = max_gap(&y, &pairs) < options.tolerance;
+    }
+    let mut solve = solver.report(&y, state, &solver_options);
+    solve.converged = met;
+    Ok(AxisField {
+        points: y[..3 * np].chunks(3).map(Vec3::from_slice).collect(),
+        solve,
+    })
+}
+

@@ -1,0 +1,205 @@
+//! The base mesh placed on a fitted sheet's walls.
+//!
+//! With the wall normals fixed, give each point `k` of the sheet a potential `P_k` and put the
+//! wall between points `l` and `r` in the plane `(p_l - p_r) . x = P_l - P_r`. The three planes
+//! at a node then meet in a line along its axis, whatever the potentials (their equations add
+//! up to zero), so every vertex is a point of its node's line: `x_v = A_v^+ b_v(P) + t_v a_v`,
+//! linear in the potentials and in a slide `t_v` along the axis. The vertices are fitted to S
+//! (closeness), to cells of one size and shape (each edge the regular cell's edge across its
+//! wall) and, weakly, to where they started; walls stay planar and nodes at 120 degrees exactly.
+
+use super::Sheet;
+use crate::constraints::{Closeness, EdgeVectors, Layout, SharedTargets, VertexTargets};
+use crate::error::Result;
+use crate::geometry::Vec3;
+use crate::mesh::{Connectivity, PolyMesh};
+use crate::solve::{
+    Constraint, GuidedProjection, IterationInfo, SolveReport, SolverOptions, Substitution,
+};
+use crate::surface::Surface;
+
+#[derive(Clone, Debug)]
+pub struct PlacementOptions {
+    pub iterations: usize,
+    pub closeness: f64,
+    /// Weight of edges of one length and of their walls' directions.
+    pub evenness: f64,
+    /// Weight of staying where the base mesh put a vertex: inner vertices, boundary ones.
+    pub anchor: f64,
+    pub boundary_anchor: f64,
+}
+
+impl Default for PlacementOptions {
+    fn default() -> Self {
+        PlacementOptions {
+            iterations: 3,
+            closeness: 100.0,
+            evenness: 3.0,
+            anchor: 0.05,
+            boundary_anchor: 1.0,
+        }
+    }
+}
+
+pub struct Placed {
+    /// Vertices in the frame of the inputs.
+    pub vertices: Vec<Vec3>,
+    /// Unit axes, on the side of S's normal.
+    pub axes: Vec<Vec3>,
+    pub solve: SolveReport,
+}
+
+/// For each vertex, the line of its node: `x = C (P_a, P_b, P_c) + t a` with `C` 3 x 3 over
+/// the potentials of its triangle `[a, b, c]`, and the unit axis `a`.
+fn node_lines(sheet: &Sheet, points: &[Vec3]) -> Vec<([[f64; 3]; 3], Vec3)> {
+    sheet
+        .triangles
+        .iter()
+        .map(|&[a, b, c]| {
+            let (w1, w2) = (points[a] - points[b], points[b] - points[c]);
+            // x0 = A^T (A A^T)^-1 (P_a - P_b, P_b - P_c) for A with rows w1, w2.
+            let (g11, g12, g22) = (w1.dot(w1), w1.dot(w2), w2.dot(w2));
+            let det = g11 * g22 - g12 * g12;
+            let inv = [[g22 / det, -g12 / det], [-g12 / det, g11 / det]];
+            // Columns of A^T inv: the point's response to the two right-hand sides.
+            let r1 = w1 * inv[0][0] + w2 * inv[1][0];
+            let r2 = w1 * inv[0][1] + w2 * inv[1][1];
+            // b = (P_a - P_b, P_b - P_c): P_a -> r1, P_b -> r2 - r1, P_c -> -r2.
+            let cols = [r1, r2 - r1, -r2];
+            let m = std::array::from_fn(|k| std::array::from_fn(|j| cols[j].to_array()[k]));
+            (m, w1.cross(w2).normalized())
+        })
+        .collect()
+}
+
+/// Places `mesh` (its start) on the walls of `sheet` at `points`, close to `surface`; all in
+/// one frame.
+pub fn place(
+    mesh: &PolyMesh,
+    conn: &Connectivity,
+    sheet: &Sheet,
+    points: &[Vec3],
+    surface: &Surface,
+    options: &PlacementOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Placed> {
+    let (nv, np) = (mesh.vertices.len(), sheet.points());
+    let lines = node_lines(sheet, points);
+    let mut axes: Vec<Vec3> = lines.iter().map(|l| l.1).collect();
+    for (v, a) in axes.iter_mut().enumerate() {
+        if a.dot(surface.normal_at(mesh.vertices[v])) < 0.0 {
+            *a = -*a;
+        }
+    }
+    // Adding one number to every potential moves no wall: the first is held at zero (the
+    // solver's unknowns are the other potentials, then the slides).
+    let unknown = |point: usize| point.checked_sub(1);
+    let per_x: Vec<Vec<(usize, f64)>> = (0..3 * nv)
+        .map(|i| {
+            let (v, k) = (i / 3, i % 3);
+            let t = sheet.triangles[v];
+            let mut terms: Vec<(usize, f64)> = (0..3)
+                .filter_map(|j| unknown(t[j]).map(|y| (y, lines[v].0[k][j])))
+                .collect();
+            terms.push((np - 1 + v, axes[v].to_array()[k]));
+            terms
+        })
+        .collect();
+    let unknowns = np - 1 + nv;
+    let substitution = Substitution::new(unknowns, &per_x);
+    let layout = Layout::new(nv, 0);
+    let mean_edge = mesh.mean_edge_length();
+    let edge_vectors = conn
+        .edges
+        .iter()
+        .enumerate()
+        .map(|(e, &[a, b])| {
+            let along = sheet.wall_normal(points, e).cross(axes[a] + axes[b]);
+            let d = along.normalized() * mean_edge;
+            let start = mesh.vertices[b] - mesh.vertices[a];
+            ([a, b], if d.dot(start) < 0.0 { -d } else { d })
+        })
+        .collect();
+    let anchors = |boundary: bool| {
+        let targets = SharedTargets::new(nv);
+        targets.set(
+            (0..nv)
+                .map(|v| (conn.is_boundary_vertex[v] == boundary).then_some(mesh.vertices[v]))
+                .collect(),
+        );
+        targets
+    };
+    let anchor_family = |boundary: bool, weight| VertexTargets {
+        layout,
+        targets: anchors(boundary),
+        weight,
+    };
+    // The start: potentials and slides that best reproduce the base mesh (no closeness yet,
+    // whose tangent planes need vertices near S).
+    let start_families: Vec<Box<dyn Constraint>> = vec![
+        Box::new(anchor_family(false, 1.0)),
+        Box::new(anchor_family(true, 1.0)),
+    ];
+    let mut y = vec![0.0; unknowns];
+    let exact = SolverOptions {
+        max_iterations: 1,
+        eps: 1e-6,
+        eps_min: 1e-8,
+        ..SolverOptions::default()
+    };
+    let mut start = GuidedProjection::with_substitution(
+        start_families,
+        Substitution::new(unknowns, &per_x),
+        None,
+        &[],
+    )?;
+    let first = start.solve(&mut y, &exact, &mut |_| {})?;
+    let families: Vec<Box<dyn Constraint + '_>> = vec![
+        Box::new(Closeness::new(layout, surface, options.closeness)),
+        Box::new(EdgeVectors {
+            layout,
+            edges: edge_vectors,
+            weight: options.evenness,
+        }),
+        Box::new(anchor_family(false, options.anchor)),
+        Box::new(anchor_family(true, options.boundary_anchor)),
+    ];
+    let mut solver = GuidedProjection::with_substitution(families, substitution, None, &[])?;
+    let solver_options = SolverOptions {
+        max_iterations: options.iterations,
+        eps: 1e-6,
+        eps_min: 1e-8,
+        tolerance: 0.0,
+        ..SolverOptions::default()
+    };
+    let mut solve = solver.solve(&mut y, &solver_options, progress)?;
+    solve.iterations += first.iterations;
+    let x = solver.family_unknowns(&y);
+    let mut vertices: Vec<Vec3> = x.chunks(3).map(Vec3::from_slice).collect();
+    slide_onto(surface, &mut vertices, &axes, mean_edge);
+    Ok(Placed {
+        vertices,
+        axes,
+        solve,
+    })
+}
+
+/// Moves each vertex along its axis onto `surface` (a few Newton steps on its signed distance
+/// to the tangent plane at its closest point), never further than `limit` in one step.
+pub fn slide_onto(surface: &Surface, vertices: &mut [Vec3], axes: &[Vec3], limit: f64) {
+    for (p, &a) in vertices.iter_mut().zip(axes) {
+        for _ in 0..6 {
+            let c = surface.closest_point(*p);
+            let along = a.dot(c.normal);
+            if along.abs() < 0.2 || c.on_boundary {
+                break;
+            }
+            let step = (-(*p - c.point).dot(c.normal) / along).clamp(-limit, limit);
+            *p = *p + a * step;
+            if step.abs() < 1e-12 * limit {
+                break;
+            }
+        }
+    }
+}
+
