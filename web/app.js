@@ -113,15 +113,19 @@ function applyState(s) {
   const wallCol = objects.wallMesh.geometry.attributes.color;
   const basePos = objects.base.geometry.attributes.position;
   const offPos = objects.offset.geometry.attributes.position;
-  const byOmega = document.querySelector('input[name=colour]:checked').value === 'omega';
+  const by = document.querySelector('input[name=colour]:checked').value;
   const colour = new THREE.Color();
   m.edges.forEach(([a, b], e) => {
     const corners = [[B, a], [B, b], [O, b], [O, a]];
     corners.forEach(([P, v], k) => wallPos.array.set([P[3 * v], P[3 * v + 1], P[3 * v + 2]], 12 * e + 3 * k));
     basePos.array.set([B[3 * a], B[3 * a + 1], B[3 * a + 2], B[3 * b], B[3 * b + 1], B[3 * b + 2]], 6 * e);
     offPos.array.set([O[3 * a], O[3 * a + 1], O[3 * a + 2], O[3 * b], O[3 * b + 1], O[3 * b + 2]], 6 * e);
-    const value = byOmega ? Math.max(s.omega[a], s.omega[b]) : s.delta[e];
-    heat(value, byOmega ? 0.05 : 1e-3, colour);
+    if (by === 'axis') {
+      lean(Math.max(s.axis[a], s.axis[b]), colour);
+    } else {
+      const value = by === 'omega' ? Math.max(s.omega[a], s.omega[b]) : s.delta[e];
+      heat(value, by === 'omega' ? 0.05 : 1e-3, colour);
+    }
     for (let k = 0; k < 4; k++) wallCol.array.set([colour.r, colour.g, colour.b], 12 * e + 3 * k);
   });
   wallPos.needsUpdate = wallCol.needsUpdate = basePos.needsUpdate = offPos.needsUpdate = true;
@@ -147,6 +151,8 @@ function applyState(s) {
   $('delta_avg').textContent = f(ms.delta_avg);
   $('closeness_max').textContent = f(ms.closeness_max);
   $('closeness_avg').textContent = f(ms.closeness_avg);
+  $('axis_mean').textContent = ms.axis_normal_mean_deg.toFixed(2);
+  $('axis_max').textContent = ms.axis_normal_max_deg.toFixed(2);
   $('step_ms').textContent = s.step_ms.toFixed(1);
   $('edit_ms').textContent = s.edit_ms.toFixed(1);
   setStatus(s.done ? 'ready' : 'solving...');
@@ -157,6 +163,12 @@ function applyState(s) {
 }
 
 // Blue (0) over green and yellow to red (at `scale` and above), on a log scale from scale/1e4.
+// An axis's angle to S's normal: blue (along it) over green to red (45 degrees and more).
+function lean(degrees, out) {
+  const t = Math.min(1, Math.max(0, degrees / 45));
+  out.setHSL((1 - t) * 0.66, 0.75, 0.5);
+}
+
 function heat(value, scale, out) {
   const t = Math.min(1, Math.max(0, Math.log10(Math.max(value, 1e-30) / scale) / 4 + 1));
   out.setHSL((1 - t) * 0.66, 0.75, 0.5);

@@ -7,10 +7,8 @@ use honeycomb::init::{
     init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, Initialized, Method,
 };
 use honeycomb::mesh::{Outputs, PolyMesh};
-use honeycomb::optimize::SECOND_TRY_MIN_EDGE;
 use honeycomb::pipeline::{pipeline, PipelineOptions, Step};
 use honeycomb::reciprocal::AcrossOptions;
-use honeycomb::report::Report;
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -163,29 +161,6 @@ fn print_report(made: &Initialized, output: Output, written: &Path) -> Result<()
     Ok(())
 }
 
-/// Says what the pipeline changed to get a honeycomb.
-fn print_settling(report: &Report) {
-    if report.per_edge_fallback == Some(true) {
-        eprintln!(
-            "note: wall normals as cell points gave no honeycomb; this is the solve with one \
-             normal per edge"
-        );
-    }
-    if report.second_try == Some(true) {
-        eprintln!(
-            "note: the default weights gave no honeycomb; this is the second try, without the \
-             opposite-wall fairness and with every edge at least {SECOND_TRY_MIN_EDGE} mean edge \
-             lengths"
-        );
-    }
-    if let Some(dropped) = report.dropped_boundary_cells.filter(|&d| d > 0) {
-        eprintln!(
-            "note: {dropped} boundary cells that the solve broke (collapsed cap, mirrored node \
-             or crossed wall) were dropped; initial.obj is the mesh without them"
-        );
-    }
-}
-
 #[derive(clap::Args)]
 pub struct PipelineArgs {
     /// Design surface S: a triangle, quad or polygon mesh (OBJ, OFF, PLY).
@@ -275,7 +250,6 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     honeycomb::export::write_structure(dir, &made.optimized.honeycomb, &report)?;
     if output == Output::Human {
         print_report(&made.initialized, output, &dir.join("initial.obj"))?;
-        print_settling(&report);
     }
     print_notes(&made.notes, output);
     finish(

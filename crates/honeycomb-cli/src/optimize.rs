@@ -131,12 +131,13 @@ pub struct SolveArgs {
     #[arg(long, default_value_t = Weights::default().guide, allow_negative_numbers = true)]
     pub w_guide: f64,
     /// How the walls stand on the surface: `across` (node axes as close to its normals as a
-    /// honeycomb allows, cells of one size), `uniform` (every axis along its mean normal) or a
-    /// direction DX,DY,DZ for every axis (vertical walls on a roof: 0,0,1) [default: across;
-    /// not with --parallel, --quads, --axes or --light].
+    /// honeycomb allows, cells of one size), `uniform` (every axis along its mean normal), a
+    /// direction DX,DY,DZ for every axis (vertical walls on a roof: 0,0,1) or `free` (wherever
+    /// the guided projection leaves them, the paper's algorithm) [default: across; not with
+    /// --parallel, --quads, --axes or --light].
     #[arg(
         long,
-        value_name = "across|uniform|DX,DY,DZ",
+        value_name = "across|uniform|DX,DY,DZ|free",
         allow_hyphen_values = true
     )]
     pub walls: Option<String>,
@@ -505,8 +506,8 @@ fn solve_and_write(
             bar.step(step)
         });
         bar.finish();
-        let (solved, notes) = result?;
-        (solved.optimized, solved.report, notes)
+        let solved = result?;
+        (solved.optimized, solved.report, solved.notes)
     };
     report.seconds = start.elapsed().as_secs_f64();
     if let Some(light) = args.light {
@@ -568,7 +569,7 @@ pub fn finish(
             println!(
                 "walls {}: axis to normal {:.2} deg mean, {:.2} p95 (parallel axes {:.2}, {:.2}); \
                  edge cv {:.3}; {} iterations in all",
-                walls_label(&report.walls),
+                report.walls.label(),
                 m.axis_normal_deg.mean,
                 m.axis_normal_deg.p95,
                 m.parallel_baseline_deg.mean,
@@ -639,15 +640,6 @@ pub fn finish(
         )));
     }
     Ok(())
-}
-
-/// `across`, `uniform` or `x,y,z`.
-pub fn walls_label(walls: &Walls) -> String {
-    match walls {
-        Walls::Across => "across".into(),
-        Walls::Uniform => "uniform".into(),
-        Walls::Direction(d) => honeycomb::error::short_vector(*d),
-    }
 }
 
 pub fn run(args: Args) -> Result<()> {

@@ -3,6 +3,7 @@
 use crate::optimize::name_file;
 use crate::progress::{Output, Spinner};
 use honeycomb::generate::Shape;
+use honeycomb::pipeline::Walls;
 use honeycomb::{Error, Result};
 use honeycomb_serve::{start, ServeOptions, Source};
 use std::path::PathBuf;
@@ -24,6 +25,14 @@ pub struct Args {
     /// Cells of the base mesh made on a design surface.
     #[arg(long, default_value_t = 750)]
     pub cells: usize,
+    /// With a design surface: how the walls stand on it, as `pipeline --walls` (across,
+    /// uniform, free or a direction DX,DY,DZ) [default: across].
+    #[arg(
+        long,
+        value_name = "across|uniform|DX,DY,DZ|free",
+        allow_hyphen_values = true
+    )]
+    pub walls: Option<String>,
     /// Built-in surface of the demo (no input): saddle, dome, cylinder or roof.
     #[arg(long, default_value = "dome")]
     pub shape: Shape,
@@ -55,6 +64,19 @@ pub fn run(args: Args) -> Result<()> {
             args.saves.display()
         )));
     }
+    let walls = match &args.walls {
+        None => Walls::Across,
+        Some(text) => text
+            .parse()
+            .map_err(|m: String| Error::Parameter(format!("--walls {m}")))?,
+    };
+    let surface_input = args.input.as_ref().is_some_and(|p| p.is_file());
+    if args.walls.is_some() && !surface_input {
+        return Err(Error::Parameter(
+            "--walls shapes the honeycomb made on a design surface: give one (serve              SURFACE.obj --walls ...); a structure directory and the demo have their walls"
+                .into(),
+        ));
+    }
     let source = match &args.input {
         None => Source::Demo {
             shape: args.shape,
@@ -66,7 +88,7 @@ pub fn run(args: Args) -> Result<()> {
                 path.display()
             )))
         }
-        Some(path) => Source::from_path(path, args.cells),
+        Some(path) => Source::from_path(path, args.cells, walls),
     };
     let options = ServeOptions {
         host: if args.public {

@@ -61,6 +61,8 @@ fn an_optimized_honeycomb_satisfies_proposition_1_and_an_unoptimized_mesh_does_n
         "demo",
         "--shape",
         "dome",
+        "--walls",
+        "free",
         "--iterations",
         "1",
         "--eps",

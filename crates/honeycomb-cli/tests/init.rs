@@ -114,25 +114,39 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     assert_eq!(initial.faces, base.faces);
 }
 
-/// Without --flatten, pipeline lays the grid in plan view where it can (the dome: a honeycomb
-/// from the start) and falls back to ARAP where S folds over seen from above (a vault closing
-/// past the vertical), saying so.
+/// Without --flatten, pipeline picks the grid for the walls asked: ARAP for walls across S (the
+/// default), the plan view for uniform walls (the dome: a honeycomb with parallel axes from the
+/// start), which falls back to ARAP where S folds over seen from above (a vault closing past
+/// the vertical), saying so.
 #[test]
 fn pipeline_picks_the_flattening() {
     let tmp = TempDir::new("pipeline_auto");
     let dome = surface_file(&tmp, "dome");
-    let dir = tmp.join("dome");
-    let out = run([
-        "pipeline",
-        dome.to_str().unwrap(),
-        "--cells",
-        "300",
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
+    let pipeline = |name: &str, surface: &Path, extra: &[&str]| {
+        let dir = tmp.join(name);
+        let mut args = vec!["pipeline", surface.to_str().unwrap(), "-o"];
+        args.push(dir.to_str().unwrap());
+        args.extend(extra);
+        (run(args), dir)
+    };
+    let (out, dir) = pipeline("across", &dome, &["--cells", "300"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(read_json(&dir, "init.json")["flattener"], "arap");
+    let report = read_json(&dir, "report.json");
+    assert_eq!(report["walls"], "across", "{report}");
+    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
+    let (out, dir) = pipeline("uniform", &dome, &["--cells", "300", "--walls", "uniform"]);
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(read_json(&dir, "init.json")["flattener"], "project");
-    assert!(number(&read_json(&dir, "report.json"), "omega_max_deg") < 0.01);
+    let report = read_json(&dir, "report.json");
+    assert_eq!(report["walls"], "uniform", "{report}");
+    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
+    // Every axis along S's mean normal: the axes' angles to S's normals are the baseline's.
+    let (axis, baseline) = (&report["axis_normal_deg"], &report["parallel_baseline_deg"]);
+    assert!(
+        (number(axis, "mean") - number(baseline, "mean")).abs() < 0.01,
+        "{report}"
+    );
     // A vault over 216 degrees of arc, 2 wide.
     let mut obj = String::new();
     let (n, m) = (36, 6);
@@ -155,17 +169,8 @@ fn pipeline_picks_the_flattening() {
         }
     }
     let vault = tmp.write("vault.obj", &obj);
-    let dir = tmp.join("vault");
-    let out = run([
-        "pipeline",
-        vault.to_str().unwrap(),
-        "--cells",
-        "150",
-        "--w-fair",
-        "0",
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
+    let extra = ["--cells", "150", "--w-fair", "0", "--walls", "uniform"];
+    let (out, dir) = pipeline("vault", &vault, &extra);
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(
         stderr(&out).contains("note: --flatten project"),
@@ -339,11 +344,10 @@ fn wavy_disk(height: fn(f64, f64) -> f64, lobes: f64, wave: f64) -> String {
     obj
 }
 
-/// On a monkey saddle with a wavy rim the solve with normals per edge breaks a few boundary
-/// cells (and `optimize` on the same grid stops with omega far above the tolerance); pipeline
-/// drops them and gets a honeycomb. On a dome with a three-lobed rim the default weights give
-/// none at all: pipeline's second try, without fairness, does. (With cell points, the default,
-/// both are honeycombs at once: checked first.)
+/// The guided projection (`--walls free`) of a plan-view grid on a monkey saddle with a wavy
+/// rim: with normals per edge the solve breaks a few boundary cells (and `optimize` on the same
+/// grid stops with omega far above the tolerance); pipeline drops them and gets a honeycomb.
+/// (With cell points, the default, it is a honeycomb at once: checked first.)
 #[test]
 fn pipeline_drops_broken_boundary_cells_and_tries_again() {
     let tmp = TempDir::new("pipeline_broken");
@@ -355,8 +359,8 @@ fn pipeline_drops_broken_boundary_cells_and_tries_again() {
     let out = run([
         "init",
         monkey.to_str().unwrap(),
-        "--cells",
-        "300",
+        "--edge-length",
+        "0.0928",
         "--flatten",
         "project",
         "-q",
@@ -366,7 +370,8 @@ fn pipeline_drops_broken_boundary_cells_and_tries_again() {
     assert!(out.status.success(), "{}", stderr(&out));
     let optimize = |dir: &Path, normals: &str| {
         let mut args = vec!["optimize", grid.to_str().unwrap(), "--surface"];
-        args.extend([monkey.to_str().unwrap(), "-q", "-o", dir.to_str().unwrap()]);
+        args.extend([monkey.to_str().unwrap(), "--walls", "free", "-q", "-o"]);
+        args.push(dir.to_str().unwrap());
         args.extend((!normals.is_empty()).then_some(normals));
         run(args)
     };
@@ -385,8 +390,12 @@ fn pipeline_drops_broken_boundary_cells_and_tries_again() {
     let out = run([
         "pipeline",
         monkey.to_str().unwrap(),
-        "--cells",
-        "300",
+        "--edge-length",
+        "0.0928",
+        "--flatten",
+        "project",
+        "--walls",
+        "free",
         "--per-edge-normals",
         "-o",
         dir.to_str().unwrap(),
@@ -405,31 +414,10 @@ fn pipeline_drops_broken_boundary_cells_and_tries_again() {
     let cells = read_written_mesh(&grid).faces.len();
     let dropped = number(&report, "dropped_boundary_cells") as usize;
     assert_eq!(base.faces.len() + dropped, cells);
-
-    let dome = tmp.write(
-        "dome.obj",
-        &wavy_disk(|x, y| -0.8 * (x * x + y * y), 3.0, 0.3),
-    );
-    let dir = tmp.join("dome");
-    let out = run([
-        "pipeline",
-        dome.to_str().unwrap(),
-        "--cells",
-        "300",
-        "--per-edge-normals",
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    let report = read_json(&dir, "report.json");
-    assert_eq!(report["second_try"], true, "{report}");
-    assert_eq!(number(&report["weights"], "fairness"), 0.0, "{report}");
-    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
-    assert!(stderr(&out).contains("second try"), "{}", stderr(&out));
 }
 
 /// `--method field`: the field-aligned mesh on a saddle, reported as such, becomes a honeycomb
-/// through pipeline.
+/// with walls across S through pipeline.
 #[test]
 fn pipeline_with_the_field_method() {
     let tmp = TempDir::new("pipeline_field");
@@ -454,14 +442,8 @@ fn pipeline_with_the_field_method() {
     let report = read_json(&dir, "report.json");
     assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
     assert_eq!(number(&report, "nonconvex_walls"), 0.0, "{report}");
-    // Cell points leave mirrored nodes on this mesh; the solve per edge that follows does not.
-    assert_eq!(report["per_edge_fallback"], true, "{report}");
-    assert_eq!(report["wall_normals"], "per_edge", "{report}");
-    assert!(
-        stderr(&out).contains("one normal per edge"),
-        "{}",
-        stderr(&out)
-    );
+    assert_eq!(report["walls"], "across", "{report}");
+    assert!(number(&report, "iterations_total") <= 40.0, "{report}");
 }
 
 /// Options that the made mesh shows to be unusable stop the pipeline before it writes anything.

@@ -96,6 +96,8 @@ fn the_spherical_image_tells_zero_area_cells_from_the_others() {
         "dome",
         "--vertices",
         "300",
+        "--walls",
+        "free",
         "--iterations",
         "1",
         "--eps",

@@ -180,6 +180,7 @@ pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
         "offset": flat(&h.offset.vertices),
         "omega": m.omega_per_node.iter().map(|&x| x as f32).collect::<Vec<_>>(),
         "delta": m.delta_per_wall.iter().map(|&x| x as f32).collect::<Vec<_>>(),
+        "axis": m.axis_normal_per_node.iter().map(|&x| x as f32).collect::<Vec<_>>(),
         "measures": {
             "omega_max_deg": m.omega_max_deg,
             "omega_avg_deg": m.omega_avg_deg,
@@ -187,6 +188,8 @@ pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
             "delta_avg": m.delta_avg,
             "closeness_max": m.closeness_max,
             "closeness_avg": m.closeness_avg,
+            "axis_normal_mean_deg": m.axis_normal_deg.mean,
+            "axis_normal_max_deg": m.axis_normal_deg.max,
             "mean_edge_length": m.mean_edge_length,
         },
     })

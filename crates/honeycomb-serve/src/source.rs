@@ -3,10 +3,9 @@
 
 use honeycomb::export::read_structure;
 use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::init::{init, CellSize, Flattener, InitOptions};
 use honeycomb::interactive::Workspace;
 use honeycomb::mesh::{read_mesh, PolyMesh};
-use honeycomb::optimize::{optimize_made_mesh, OptimizeOptions};
+use honeycomb::pipeline::{pipeline, PipelineOptions, Walls};
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
 
@@ -16,19 +15,25 @@ pub enum Source {
     Demo { shape: Shape, vertices: usize },
     /// A structure directory (`structure.json`, and `surface.obj` when it has one).
     Structure(PathBuf),
-    /// A design surface: `init` puts about `cells` hexagons on it.
-    Surface { path: PathBuf, cells: usize },
+    /// A design surface: `pipeline` makes a honeycomb of about `cells` cells on it, its
+    /// walls standing as `walls` says.
+    Surface {
+        path: PathBuf,
+        cells: usize,
+        walls: Walls,
+    },
 }
 
 impl Source {
     /// A path names a structure directory or a surface file.
-    pub fn from_path(path: &Path, cells: usize) -> Source {
+    pub fn from_path(path: &Path, cells: usize, walls: Walls) -> Source {
         if path.is_dir() {
             Source::Structure(path.to_path_buf())
         } else {
             Source::Surface {
                 path: path.to_path_buf(),
                 cells,
+                walls,
             }
         }
     }
@@ -42,7 +47,11 @@ impl Source {
                 )
             }
             Source::Structure(dir) => dir.display().to_string(),
-            Source::Surface { path, cells } => format!("{} ({cells} cells)", path.display()),
+            Source::Surface { path, cells, walls } => format!(
+                "{} ({cells} cells, walls {})",
+                path.display(),
+                walls.label()
+            ),
         }
     }
 
@@ -57,27 +66,14 @@ impl Source {
                 let surface = structure_surface(dir)?;
                 Workspace::from_honeycomb(&h, surface.as_ref())
             }
-            Source::Surface { path, cells } => {
+            Source::Surface { path, cells, walls } => {
                 let surface = read_mesh(path)?.mesh;
-                // As `pipeline` does: the plan-view grid first (a honeycomb from the start
-                // wherever S does not fold over seen from above), else the ARAP one.
-                let options = |flattener| InitOptions {
-                    flattener,
-                    ..InitOptions::new(CellSize::Cells(*cells))
-                };
-                let base = match init(&surface, &options(Flattener::Project)) {
-                    Ok(made) => made.base,
-                    Err(_) => init(&surface, &options(Flattener::Arap))?.base,
-                };
-                // Solved as `pipeline` solves a mesh it made (broken boundary cells dropped,
-                // a second try without fairness), so that editing starts from a honeycomb.
-                let optimize_options = OptimizeOptions {
-                    thickness,
-                    ..OptimizeOptions::default()
-                };
-                let made =
-                    optimize_made_mesh(&base, &surface, &optimize_options, true, &mut |_, _| {})?;
-                Workspace::from_honeycomb(&made.settled.optimized.honeycomb, Some(&surface))
+                // As `honeycomb pipeline` makes it, so that editing starts from a honeycomb.
+                let mut options = PipelineOptions::new(*cells);
+                options.walls = *walls;
+                options.optimize.thickness = thickness;
+                let made = pipeline(&surface, &options, &mut |_| {})?;
+                Workspace::from_honeycomb(&made.optimized.honeycomb, Some(&surface))
             }
         }
     }

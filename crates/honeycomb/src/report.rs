@@ -94,7 +94,7 @@ impl Report {
         let honeycomb =
             m.omega_max_deg <= Self::OMEGA_TOLERANCE_DEG && m.delta_max <= Self::DELTA_TOLERANCE;
         Report {
-            walls: Walls::Uniform,
+            walls: Walls::Free,
             honeycomb,
             vertices: opt.honeycomb.base.vertices.len(),
             edges: opt.honeycomb.edges.len(),
@@ -155,12 +155,13 @@ impl Report {
     }
 
     pub const FIGURE16_HEADER: &'static str =
-        "   |V|    |E|  w_ang w_con w_nrm  #It  omega_max  omega_avg  delta_max  delta_avg   T (s)";
+        "   |V|    |E|  w_ang w_con w_nrm  #It  omega_max  omega_avg  delta_max  delta_avg   T (s)  axis";
 
-    /// One row in the layout of the paper's Figure 16.
+    /// One row in the layout of the paper's Figure 16, and how the walls stand on S: the mean
+    /// angle of the node axes to S's normals (degrees).
     pub fn figure16_row(&self) -> String {
         format!(
-            "{:>6} {:>6} {:>6} {:>5} {:>5} {:>4} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>7.3}",
+            "{:>6} {:>6} {:>6} {:>5} {:>5} {:>4} {:>10.2e} {:>10.2e} {:>10.2e} {:>10.2e} {:>7.3} {:>5.1}",
             self.vertices,
             self.edges,
             self.weights.angle,
@@ -171,7 +172,8 @@ impl Report {
             self.measures.omega_avg_deg,
             self.measures.delta_max,
             self.measures.delta_avg,
-            self.seconds
+            self.seconds,
+            self.measures.axis_normal_deg.mean
         )
     }
 }

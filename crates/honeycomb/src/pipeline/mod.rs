@@ -1,5 +1,5 @@
 //! From a design surface to a honeycomb: which base mesh, which solve, which retries. The one
-//! strategy that `honeycomb pipeline` and the editor's surface source share.
+//! strategy that `honeycomb pipeline`, `optimize`, `demo` and the editor's surface source share.
 //!
 //! - [`Walls::Across`] (the default): a flattening that keeps lengths (ARAP) gives cells of one
 //!   size on S; the node axes are fitted to S's normals as a folded sheet and the vertices
@@ -9,9 +9,14 @@
 //! - [`Walls::Uniform`]: S seen along its mean normal, a regular grid laid in plan view and
 //!   lifted: a honeycomb with parallel node axes (vertical walls on a roof) from the start.
 //! - [`Walls::Direction`]: the same seen along a given direction.
+//! - [`Walls::Free`]: the guided projection of the ARAP mesh from walls orthogonal to S, the
+//!   axes wherever it leaves them (the paper's algorithm).
 
-use crate::error::{short_vector, Error, Result};
-use crate::geometry::Vec3;
+mod walls;
+
+pub use walls::Walls;
+
+use crate::error::{rounded, short_vector, Error, Result};
 use crate::init::{init, CellSize, Flattener, InitOptions, Initialized, Method};
 use crate::mesh::{validate_surface_mesh, PolyMesh};
 use crate::optimize::{
@@ -23,66 +28,7 @@ use crate::report::Report;
 use crate::solve::IterationInfo;
 use crate::structure::{measure, Measures};
 use crate::surface::Surface;
-use serde::{Serialize, Serializer};
-use std::str::FromStr;
-
-/// How the walls stand on S.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Walls {
-    /// Node axes as close to S's normals as a honeycomb allows, cells of one size.
-    Across,
-    /// Every node axis along S's mean normal.
-    Uniform,
-    /// Every node axis along this direction (unit).
-    Direction(Vec3),
-}
-
-impl Default for Walls {
-    fn default() -> Walls {
-        Walls::Across
-    }
-}
-
-impl FromStr for Walls {
-    type Err = String;
-    fn from_str(s: &str) -> std::result::Result<Walls, String> {
-        match s {
-            "across" => return Ok(Walls::Across),
-            "uniform" => return Ok(Walls::Uniform),
-            _ => {}
-        }
-        let numbers: Vec<f64> = s
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|w| !w.is_empty())
-            .map(str::parse)
-            .collect::<std::result::Result<_, _>>()
-            .map_err(|_| format!("`{s}`: expected across, uniform or a direction DX,DY,DZ"))?;
-        match numbers[..] {
-            [x, y, z] if numbers.iter().all(|v| v.is_finite()) => {
-                let d = Vec3::new(x, y, z);
-                let n = d.norm();
-                if n < 1e-12 || !n.is_finite() {
-                    return Err(format!("`{s}`: the direction has no length"));
-                }
-                Ok(Walls::Direction(d / n))
-            }
-            _ => Err(format!(
-                "`{s}`: expected across, uniform or three finite numbers DX,DY,DZ"
-            )),
-        }
-    }
-}
-
-/// `"across"`, `"uniform"`, or the direction as `[x, y, z]`.
-impl Serialize for Walls {
-    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
-        match self {
-            Walls::Across => s.serialize_str("across"),
-            Walls::Uniform => s.serialize_str("uniform"),
-            Walls::Direction(d) => d.to_array().serialize(s),
-        }
-    }
-}
+use std::time::Instant;
 
 /// Everything the pipeline runs with.
 #[derive(Clone, Debug)]
@@ -92,7 +38,7 @@ pub struct PipelineOptions {
     pub init: InitOptions,
     pub init_chosen: bool,
     pub walls: Walls,
-    /// The guided projection's options (uniform walls, and the fallback of `across`).
+    /// The guided projection's options (every walls but across, and the fallback of across).
     pub optimize: OptimizeOptions,
     /// A second try without the opposite-wall fairness is allowed (the fairness was not the
     /// caller's choice).
@@ -122,7 +68,7 @@ pub struct Pipelined {
     pub base: PolyMesh,
     pub optimized: Optimized,
     pub measures: Measures,
-    /// `report.json` (without its timing, which the caller knows).
+    /// `report.json` (its `seconds` from the pipeline's start).
     pub report: Report,
     /// What the pipeline changed on the way, one sentence each, for the front to show.
     pub notes: Vec<String>,
@@ -142,9 +88,13 @@ pub enum Step<'a> {
 /// variation) means a surface no lattice of one cell size covers: refused.
 pub const MAX_BASE_EDGE_CV: f64 = 0.25;
 
-/// A honeycomb of walls across S kept without the guided projection's second opinion: every
-/// vertex this close to S (mean edge lengths), no wall quad crossed.
+/// A honeycomb of walls across S is kept when every vertex is this close to S (mean edge
+/// lengths), besides the honeycomb tolerances and no wall quad crossed.
 const ACROSS_CLOSENESS: f64 = 0.05;
+
+/// Seeds the pipeline tries with the field method: the next one's singular points and
+/// dislocations fall elsewhere.
+const FIELD_SEEDS: u64 = 2;
 
 /// Runs the pipeline on `surface`.
 pub fn pipeline(
@@ -152,96 +102,170 @@ pub fn pipeline(
     options: &PipelineOptions,
     progress: &mut dyn FnMut(Step),
 ) -> Result<Pipelined> {
+    let start = Instant::now();
     validate_surface_mesh(surface)?;
     let model_surface = Surface::from_mesh(surface)?;
     let mut notes = Vec::new();
-    // Variants solve the plan-view mesh by the guided projection, as uniform walls do.
-    let across = options.walls == Walls::Across && !options.optimize.is_variant();
-    let initialized = match options.walls {
-        Walls::Across if across => {
-            progress(Step::Init);
-            let init_options = InitOptions {
+    // Variants solve a plan-view mesh by the guided projection; their axes are their own.
+    let walls = match options.walls {
+        Walls::Across if options.optimize.is_variant() => Walls::Free,
+        w => w,
+    };
+    let seeds = if options.init.method == Method::Field {
+        FIELD_SEEDS
+    } else {
+        1
+    };
+    let mut spent = 0;
+    for k in 0..seeds {
+        let last = k + 1 == seeds;
+        let init_options = InitOptions {
+            seed: options.init.seed.wrapping_add(k),
+            ..options.init.clone()
+        };
+        progress(Step::Init);
+        let made = match base_mesh(surface, &model_surface, &init_options, options, walls) {
+            Ok(made) => made,
+            Err(e) if !last => {
+                notes.push(format!(
+                    "--seed {}: {e}; trying the next seed",
+                    init_options.seed
+                ));
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        notes.extend(made.1);
+        let made = made.0;
+        let mut solved = solve_made(&made, surface, &model_surface, options, walls, progress)?;
+        notes.append(&mut solved.notes);
+        solved.report.iterations_total += spent;
+        if solved.report.honeycomb || last {
+            solved.report.seconds = start.elapsed().as_secs_f64();
+            return Ok(Pipelined {
+                initialized: made,
+                base: solved.base,
+                optimized: solved.optimized,
+                measures: solved.measures,
+                report: solved.report,
+                notes,
+            });
+        }
+        spent = solved.report.iterations_total;
+        notes.push(format!(
+            "--seed {}: its mesh gave no honeycomb (omega_max {} deg); trying the next seed",
+            init_options.seed,
+            rounded(solved.measures.omega_max_deg, 3)
+        ));
+    }
+    unreachable!("the last seed returns")
+}
+
+/// The base mesh for `walls`, with the notes of what it took.
+fn base_mesh(
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    init_options: &InitOptions,
+    options: &PipelineOptions,
+    walls: Walls,
+) -> Result<(Initialized, Vec<String>)> {
+    let mut notes = Vec::new();
+    let made = match walls {
+        Walls::Uniform | Walls::Direction(_) => plan_view(
+            surface,
+            init_options,
+            options.init_chosen,
+            walls,
+            &mut notes,
+        )?,
+        Walls::Across | Walls::Free => {
+            let chosen = InitOptions {
                 flattener: if options.init_chosen {
-                    options.init.flattener
+                    init_options.flattener
                 } else {
                     Flattener::Arap
                 },
-                ..options.init.clone()
+                ..init_options.clone()
             };
-            let made = init(surface, &init_options)?;
-            check_cell_sizes(&made, &model_surface)?;
-            made
+            init(surface, &chosen)?
         }
-        _ => plan_view(surface, options, &mut notes, progress)?,
     };
-    options.optimize.validate(&initialized.base)?;
-    if across {
-        let start = std::time::Instant::now();
-        let across = across_or_none(
-            &initialized.base,
-            surface,
-            &model_surface,
-            &options.optimize,
-            &options.across,
-            progress,
-        )?;
-        match across {
-            Ok(solved) => return Ok(solved.made_from(initialized, notes)),
-            Err((why, iterations)) => {
-                notes.push(why);
-                let mut solved = guided(&initialized, surface, options, progress)?;
-                solved.report.iterations_total += iterations;
-                solved.report.seconds = start.elapsed().as_secs_f64();
-                return Ok(solved.made_from(initialized, notes));
-            }
-        }
+    if walls == Walls::Across {
+        check_cell_sizes(&made, model_surface)?;
     }
-    let solved = guided(&initialized, surface, options, progress)?;
-    Ok(solved.made_from(initialized, notes))
+    Ok((made, notes))
 }
 
-/// A honeycomb on a base mesh, with its report.
+/// A honeycomb on a base mesh, with its report and what it took.
 pub struct Solved {
     /// The mesh the result started from (the base mesh without dropped cells).
     pub base: PolyMesh,
     pub optimized: Optimized,
     pub measures: Measures,
     pub report: Report,
+    pub notes: Vec<String>,
 }
 
-impl Solved {
-    fn made_from(self, initialized: Initialized, notes: Vec<String>) -> Pipelined {
-        Pipelined {
-            initialized,
-            base: self.base,
-            optimized: self.optimized,
-            measures: self.measures,
-            report: self.report,
-            notes,
+/// Solves a mesh the pipeline made (its boundary cells may be dropped).
+fn solve_made(
+    made: &Initialized,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    options: &PipelineOptions,
+    walls: Walls,
+    progress: &mut dyn FnMut(Step),
+) -> Result<Solved> {
+    options.optimize.validate(&made.base)?;
+    let mut spent = 0;
+    let mut notes = Vec::new();
+    if walls == Walls::Across {
+        match across_or_none(
+            &made.base,
+            surface,
+            model_surface,
+            &options.optimize,
+            &options.across,
+            progress,
+        )? {
+            Ok(solved) => return Ok(solved),
+            Err((why, iterations)) => {
+                notes.push(why);
+                spent = iterations;
+            }
         }
     }
+    let guided_walls = if walls == Walls::Across {
+        Walls::Free
+    } else {
+        walls
+    };
+    let mut solved = guided(&made.base, surface, options, guided_walls, progress)?;
+    solved.report.iterations_total += spent;
+    solved.notes.splice(0..0, notes);
+    Ok(solved)
 }
 
-/// Solves a given base mesh on `surface` (`None`: the base mesh itself) with its walls as
+/// Solves a designer's base mesh on `surface` (`None`: the base mesh itself) with its walls as
 /// asked: across S by the fitted sheet (the guided projection where that gives no honeycomb,
-/// which a note says), or uniform or along a direction by the guided projection with those
-/// axes prescribed. `optimize` and `demo` solve this way; variants (parallel meshes, quads,
-/// prescribed axes) go to [`crate::optimize::optimize`] directly.
+/// which a note says), free by the guided projection, or uniform or along a direction by the
+/// guided projection with those axes prescribed. No cell is dropped: a designer's cells are
+/// the design. Variants (parallel meshes, quads, prescribed axes) go to
+/// [`crate::optimize::optimize`] directly.
 pub fn solve_base(
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
     walls: Walls,
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(Step),
-) -> Result<(Solved, Vec<String>)> {
+) -> Result<Solved> {
+    let start = Instant::now();
     let surface_mesh = surface.unwrap_or(base);
     let model_surface = Surface::from_mesh(surface_mesh)?;
-    let start = std::time::Instant::now();
     let mut notes = Vec::new();
     let mut spent = 0;
+    let mut result_walls = walls;
     if walls == Walls::Across {
-        // A designer's cells are the design: none are dropped.
-        let across_options = AcrossOptions {
+        let keep_cells = AcrossOptions {
             max_drops: 0,
             ..AcrossOptions::default()
         };
@@ -250,13 +274,17 @@ pub fn solve_base(
             surface_mesh,
             &model_surface,
             options,
-            &across_options,
+            &keep_cells,
             progress,
         )? {
-            Ok(solved) => return Ok((solved, notes)),
+            Ok(mut solved) => {
+                solved.report.seconds = start.elapsed().as_secs_f64();
+                return Ok(solved);
+            }
             Err((why, iterations)) => {
                 notes.push(why);
                 spent = iterations;
+                result_walls = Walls::Free;
             }
         }
     }
@@ -264,9 +292,16 @@ pub fn solve_base(
     let direction = match walls {
         Walls::Uniform => Some(model_surface.mean_normal()),
         Walls::Direction(d) => Some(d),
-        Walls::Across => None,
+        Walls::Across | Walls::Free => None,
     };
     if let Some(d) = direction {
+        if d.norm() == 0.0 {
+            return Err(Error::Mesh(
+                "--walls uniform: S has no mean normal (its areas cancel: a closed surface); \
+                 give a direction DX,DY,DZ"
+                    .into(),
+            ));
+        }
         prescribed.axes = Some(AxesOptions {
             targets: vec![d; base.vertices.len()],
             weight: AxesOptions::DEFAULT_WEIGHT,
@@ -279,17 +314,15 @@ pub fn solve_base(
     })?;
     let measures = measure(&optimized.honeycomb, &model_surface);
     let mut report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
-    report.walls = walls;
+    report.walls = result_walls;
     report.iterations_total = spent + iterations;
-    Ok((
-        Solved {
-            base: base.clone(),
-            optimized,
-            measures,
-            report,
-        },
+    Ok(Solved {
+        base: base.clone(),
+        optimized,
+        measures,
+        report,
         notes,
-    ))
+    })
 }
 
 /// Walls across S on `base`: the solved honeycomb, or why it is none and the iterations spent.
@@ -302,7 +335,7 @@ fn across_or_none(
     across_options: &AcrossOptions,
     progress: &mut dyn FnMut(Step),
 ) -> Result<std::result::Result<Solved, (String, usize)>> {
-    let start = std::time::Instant::now();
+    let start = Instant::now();
     let across_options = AcrossOptions {
         thickness: options.thickness,
         ..across_options.clone()
@@ -322,20 +355,19 @@ fn across_or_none(
             progress(Step::Iteration(name, 1, info))
         },
     );
-    let across = match across {
-        Ok(across) => across,
-        // A sheet whose triangles the fit left degenerate gives no lines to place vertices on.
-        Err(Error::Solver(m)) => {
-            return Ok(Err((
+    let fallback = "this is the guided projection of the same mesh (--walls free)";
+    let across =
+        match across {
+            Ok(across) => across,
+            // A sheet the fit left degenerate gives no lines to place vertices on.
+            Err(Error::Solver(m)) => return Ok(Err((
                 format!(
-                    "the node axes fitted to S's normals gave no honeycomb here ({m}); this is \
-                     the guided projection of the same mesh"
+                    "the node axes fitted to S's normals gave no honeycomb here ({m}); {fallback}"
                 ),
                 spent,
-            )))
-        }
-        Err(e) => return Err(e),
-    };
+            ))),
+            Err(e) => return Err(e),
+        };
     let m = &across.measures;
     if Report::within_tolerances(m) && m.nonconvex_walls == 0 && m.closeness_max <= ACROSS_CLOSENESS
     {
@@ -348,12 +380,12 @@ fn across_or_none(
     Ok(Err((
         format!(
             "the node axes fitted to S's normals gave no honeycomb here (omega_max {} deg, {} \
-             crossed walls, closeness {}); this is the guided projection of the same mesh",
-            crate::error::rounded(m.omega_max_deg, 3),
+             crossed walls, vertices up to {} edge lengths off S); {fallback}",
+            rounded(m.omega_max_deg, 3),
             m.nonconvex_walls,
-            crate::error::rounded(m.closeness_max, 3)
+            rounded(m.closeness_max, 3)
         ),
-        across.solve.iterations,
+        spent,
     )))
 }
 
@@ -362,16 +394,17 @@ fn across_or_none(
 /// grid instead (a note says so); a direction given is kept, or refused.
 fn plan_view(
     surface: &PolyMesh,
-    options: &PipelineOptions,
+    init_options: &InitOptions,
+    init_chosen: bool,
+    walls: Walls,
     notes: &mut Vec<String>,
-    progress: &mut dyn FnMut(Step),
 ) -> Result<Initialized> {
-    let view = match options.walls {
+    let view = match walls {
         Walls::Direction(d) => Some(d),
         _ => None,
     };
-    if options.init_chosen
-        && (options.init.method == Method::Field || options.init.flattener != Flattener::Project)
+    if init_chosen
+        && (init_options.method == Method::Field || init_options.flattener != Flattener::Project)
     {
         if view.is_some() {
             return Err(Error::Parameter(
@@ -380,28 +413,25 @@ fn plan_view(
                     .into(),
             ));
         }
-        progress(Step::Init);
-        return init(surface, &options.init);
+        return init(surface, init_options);
     }
     let projected = InitOptions {
         flattener: Flattener::Project,
         method: Method::Flatten,
         view,
-        ..options.init.clone()
+        ..init_options.clone()
     };
-    progress(Step::Init);
     match init(surface, &projected) {
         Ok(made) => Ok(made),
         Err(e) if view.is_none() => {
             notes.push(format!(
                 "--flatten project: {e}; this is the ARAP grid, whose axes are not parallel"
             ));
-            progress(Step::Init);
             init(
                 surface,
                 &InitOptions {
                     flattener: Flattener::Arap,
-                    ..options.init.clone()
+                    ..init_options.clone()
                 },
             )
         }
@@ -422,18 +452,21 @@ fn check_cell_sizes(made: &Initialized, surface: &Surface) -> Result<()> {
     }
     let units = surface.curvature_units(2.0 * r.edge_length_mean);
     Err(Error::Mesh(format!(
-        "too curved for a honeycomb of cells of one size: at the scale of a cell (edge {:.4}) S \
+        "too curved for a honeycomb of cells of one size: at the scale of a cell (edge {}) S \
          curves by {:.0} units of 60 degrees like a dome and {:.0} like a saddle, and a \
          hexagonal lattice of even spacing absorbs one unit only with a pentagon or a heptagon; \
          flattened, its cells differ in edge length by a cv of {:.2} (a honeycomb wants at \
          most 0.12). Split S into nearly developable pieces (a roof, a vault), or use --method \
-         field for a mesh with pentagons and heptagons and --walls uniform",
-        r.edge_length_mean, units.positive, units.negative, r.edge_length_cv
+         field for a mesh with pentagons and heptagons and --walls free",
+        rounded(r.edge_length_mean, 4),
+        units.positive,
+        units.negative,
+        r.edge_length_cv
     )))
 }
 
 /// Walls across S as a solved honeycomb with its report.
-pub fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Solved {
+fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Solved {
     let frame = Frame::of(&across.base);
     let h = across.honeycomb;
     let normals = (0..h.edges.len()).map(|e| h.wall_normal(e)).collect();
@@ -455,43 +488,75 @@ pub fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) ->
     report.iterations_total = optimized.solve.iterations;
     report.dropped_boundary_cells = Some(across.dropped_cells);
     report.axis_field_iterations = Some(across.field_iterations);
+    let mut notes = Vec::new();
+    if across.dropped_cells > 0 {
+        notes.push(format!(
+            "{} boundary cells whose walls the fitted axes crossed or turned over were              dropped; initial.obj is the mesh without them",
+            across.dropped_cells
+        ));
+    }
     Solved {
         base: across.base,
         optimized,
         measures: across.measures,
         report,
+        notes,
     }
 }
 
-/// The guided projection of the made mesh, with its retries (dropped boundary cells, a second
+/// The guided projection of a made mesh, with its retries (dropped boundary cells, a second
 /// try without fairness, normals per edge).
 fn guided(
-    initialized: &Initialized,
+    base: &PolyMesh,
     surface: &PolyMesh,
     options: &PipelineOptions,
+    walls: Walls,
     progress: &mut dyn FnMut(Step),
 ) -> Result<Solved> {
-    let start = std::time::Instant::now();
+    let start = Instant::now();
     // Every iteration of every try counts.
     let mut iterations = 0usize;
     let made = optimize_made_mesh(
-        &initialized.base,
+        base,
         surface,
         &options.optimize,
         options.second_try,
         &mut |attempt: Attempt, info| {
             iterations += 1;
-            let name = if attempt.second_try {
-                "second try"
-            } else {
-                "guided projection"
+            let name = match (attempt.second_try, attempt.per_edge) {
+                (false, false) => "guided projection",
+                (true, false) => "second try",
+                (false, true) => "guided projection, normals per edge",
+                (true, true) => "second try, normals per edge",
             };
             progress(Step::Iteration(name, attempt.solve, info))
         },
     )?;
     let s = made.settled;
+    let mut notes = Vec::new();
+    if made.per_edge_fallback {
+        notes.push(
+            "wall normals as cell points gave no honeycomb; this is the solve with one normal \
+             per edge"
+                .into(),
+        );
+    }
+    if made.second_try {
+        notes.push(format!(
+            "the default weights gave no honeycomb; this is the second try, without the \
+             opposite-wall fairness and with every edge at least {} mean edge lengths",
+            crate::optimize::SECOND_TRY_MIN_EDGE
+        ));
+    }
+    if s.dropped_cells > 0 {
+        notes.push(format!(
+            "{} boundary cells that the solve broke (collapsed cap, mirrored node or crossed \
+             wall) were dropped; initial.obj is the mesh without them",
+            s.dropped_cells
+        ));
+    }
     let mut report = Report::new(&s.optimized, &s.measures, start.elapsed().as_secs_f64());
-    report.walls = options.walls;
+    report.walls = walls;
     report.iterations_total = iterations;
     report.dropped_boundary_cells = Some(s.dropped_cells);
     report.solves = Some(s.solves);
@@ -502,5 +567,6 @@ fn guided(
         optimized: s.optimized,
         measures: s.measures,
         report,
+        notes,
     })
 }

@@ -195,11 +195,10 @@ pub fn slide_onto(surface: &Surface, vertices: &mut [Vec3], axes: &[Vec3], limit
                 break;
             }
             let step = (-(*p - c.point).dot(c.normal) / along).clamp(-limit, limit);
-            *p = *p + a * step;
+            *p += a * step;
             if step.abs() < 1e-12 * limit {
                 break;
             }
         }
     }
 }
-

@@ -1,0 +1,105 @@
+//! How the walls of a honeycomb stand on its design surface: the choice `--walls` makes.
+
+use crate::geometry::Vec3;
+use serde::{Serialize, Serializer};
+use std::str::FromStr;
+
+/// How the walls stand on S.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Walls {
+    /// Node axes as close to S's normals as a honeycomb allows, cells of one size.
+    #[default]
+    Across,
+    /// Every node axis along S's mean normal: the plan-view honeycomb.
+    Uniform,
+    /// Every node axis along this direction (unit).
+    Direction(Vec3),
+    /// Wherever the guided projection of the base mesh leaves them (the paper's algorithm,
+    /// from walls orthogonal to S).
+    Free,
+}
+
+impl Walls {
+    /// `across`, `uniform`, `free` or `x,y,z`, as the option is written.
+    pub fn label(&self) -> String {
+        match self {
+            Walls::Across => "across".into(),
+            Walls::Uniform => "uniform".into(),
+            Walls::Free => "free".into(),
+            Walls::Direction(d) => crate::error::short_vector(*d),
+        }
+    }
+}
+
+impl FromStr for Walls {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Walls, String> {
+        match s {
+            "across" => return Ok(Walls::Across),
+            "uniform" => return Ok(Walls::Uniform),
+            "free" => return Ok(Walls::Free),
+            _ => {}
+        }
+        let expected = "expected across, uniform, free or a direction DX,DY,DZ";
+        let numbers: Vec<f64> = s
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|w| !w.is_empty())
+            .map(str::parse)
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|_| format!("`{s}`: {expected}"))?;
+        match numbers[..] {
+            [x, y, z] if numbers.iter().all(|v| v.is_finite()) => {
+                let d = Vec3::new(x, y, z);
+                let n = d.norm();
+                // Scaled first: a tiny but valid direction would square to zero.
+                let largest = x.abs().max(y.abs()).max(z.abs());
+                if largest == 0.0 || !n.is_finite() {
+                    return Err(format!("`{s}`: the direction has no length"));
+                }
+                Ok(Walls::Direction((d / largest).normalized()))
+            }
+            _ => Err(format!("`{s}`: {expected} (three finite numbers)")),
+        }
+    }
+}
+
+/// `"across"`, `"uniform"`, `"free"`, or the direction as `[x, y, z]`.
+impl Serialize for Walls {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        match self {
+            Walls::Direction(d) => d.to_array().serialize(s),
+            other => s.serialize_str(&other.label()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn walls_parse_names_and_directions() {
+        assert_eq!("across".parse::<Walls>(), Ok(Walls::Across));
+        assert_eq!("uniform".parse::<Walls>(), Ok(Walls::Uniform));
+        assert_eq!("free".parse::<Walls>(), Ok(Walls::Free));
+        assert_eq!(
+            "0,0,2".parse::<Walls>(),
+            Ok(Walls::Direction(Vec3::new(0.0, 0.0, 1.0)))
+        );
+        let Ok(Walls::Direction(d)) = "1e-200,0,1e-200".parse::<Walls>() else {
+            panic!("a tiny direction is still a direction");
+        };
+        assert!((d.norm() - 1.0).abs() < 1e-12 && (d.x - d.z).abs() < 1e-12);
+        for bad in [
+            "0,0,0", "1,2", "1,2,3,4", "x,1,2", "inf,0,1", "NaN,0,1", "sideways",
+        ] {
+            let e = bad.parse::<Walls>().unwrap_err();
+            assert!(e.contains(bad), "{e}");
+        }
+        assert_eq!(
+            serde_json::to_string(&Walls::Direction(Vec3::new(0.0, 0.0, 1.0))).unwrap(),
+            "[0.0,0.0,1.0]"
+        );
+        assert_eq!(serde_json::to_string(&Walls::Across).unwrap(), "\"across\"");
+    }
+}
