@@ -1,6 +1,7 @@
 //! The editor server over real sockets: what it serves, what it refuses, how it streams.
 
 use honeycomb::generate::Shape;
+use honeycomb::pipeline::Walls;
 use honeycomb_serve::latency::Client;
 use honeycomb_serve::{start, ServeOptions, Server, Source};
 use serde_json::{json, Value};
@@ -258,7 +259,7 @@ fn a_design_surface_gets_a_hex_mesh_first() {
         save_root: dir.join("saves"),
         ..ServeOptions::default()
     };
-    let server = start(&Source::from_path(&path, 200), options).unwrap();
+    let server = start(&Source::from_path(&path, 200, Walls::Across), options).unwrap();
     let (_, mesh, state) = connect(&server);
     let nv = mesh["vertices"].as_u64().unwrap();
     assert!((300..600).contains(&nv), "{nv} vertices for 200 cells");
@@ -267,7 +268,7 @@ fn a_design_surface_gets_a_hex_mesh_first() {
     assert!(omega < 0.01, "omega {omega}");
     server.stop();
     // A missing file is an error before anything is served.
-    let missing = Source::from_path(&dir.join("missing.obj"), 200);
+    let missing = Source::from_path(&dir.join("missing.obj"), 200, Walls::Across);
     assert!(start(
         &missing,
         ServeOptions {

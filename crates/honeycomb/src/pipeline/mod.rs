@@ -356,18 +356,19 @@ fn across_or_none(
         },
     );
     let fallback = "this is the guided projection of the same mesh (--walls free)";
-    let across =
-        match across {
-            Ok(across) => across,
-            // A sheet the fit left degenerate gives no lines to place vertices on.
-            Err(Error::Solver(m)) => return Ok(Err((
+    let across = match across {
+        Ok(across) => across,
+        // A sheet the fit left degenerate gives no lines to place vertices on.
+        Err(Error::Solver(m)) => {
+            return Ok(Err((
                 format!(
                     "the node axes fitted to S's normals gave no honeycomb here ({m}); {fallback}"
                 ),
                 spent,
-            ))),
-            Err(e) => return Err(e),
-        };
+            )))
+        }
+        Err(e) => return Err(e),
+    };
     let m = &across.measures;
     if Report::within_tolerances(m) && m.nonconvex_walls == 0 && m.closeness_max <= ACROSS_CLOSENESS
     {
