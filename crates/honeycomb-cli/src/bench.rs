@@ -9,6 +9,7 @@ use honeycomb::solve::SolverOptions;
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result};
+use std::path::PathBuf;
 use std::time::Instant;
 
 #[derive(clap::Args)]
@@ -50,6 +51,26 @@ pub struct Args {
     /// over a WebSocket to the updated geometry received, on 1.5k- and 8.5k-vertex domes.
     #[arg(long, conflicts_with_all = ["variants", "init"])]
     pub serve: bool,
+    /// Instead of the sizes: the whole `pipeline` on every design surface (OBJ, OFF, PLY) in
+    /// DIR (default ../shared/data, skipped with a reason when absent), one row each: cells,
+    /// seconds, iterations, omega_max, delta_max, the axes' angle to S's normals (mean, p95)
+    /// against parallel axes', edge-length cv.
+    #[arg(long, value_name = "DIR", num_args = 0..=1, conflicts_with_all = ["variants", "init", "serve"])]
+    pub roofs: Option<Option<PathBuf>>,
+    /// With --roofs: cells asked for, comma separated.
+    #[arg(long, value_delimiter = ',', default_values_t = [1500], requires = "roofs")]
+    pub cells: Vec<usize>,
+    /// With --roofs: the built-in cylinder, cone, dome, saddle and wave too.
+    #[arg(long, requires = "roofs")]
+    pub generated: bool,
+    /// With --roofs: how the walls stand (as `pipeline --walls`).
+    #[arg(
+        long,
+        default_value = "across",
+        requires = "roofs",
+        allow_hyphen_values = true
+    )]
+    pub walls: String,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -61,6 +82,19 @@ pub fn run(args: Args) -> Result<()> {
     }
     if args.serve {
         return crate::serve::bench(args.json);
+    }
+    if let Some(dir) = args.roofs {
+        let walls = args
+            .walls
+            .parse()
+            .map_err(|m: String| Error::Parameter(format!("--walls {m}")))?;
+        return crate::bench_roofs::run(crate::bench_roofs::RoofsArgs {
+            dir,
+            cells: args.cells,
+            generated: args.generated,
+            walls,
+            json: args.json,
+        });
     }
     if args.iterations == 0 || args.iterations > 1000 {
         return Err(Error::Parameter(format!(

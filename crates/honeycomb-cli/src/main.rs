@@ -2,6 +2,7 @@
 
 mod analyse;
 mod bench;
+mod bench_roofs;
 mod bench_variants;
 mod demo;
 mod edit;

@@ -1,0 +1,255 @@
+//! `honeycomb bench --roofs [DIR]`: the whole pipeline on every design surface in a folder (and
+//! on the built-in ones with `--generated`), one row each: how long, how many iterations, how
+//! exact, and how the walls stand on S against parallel axes.
+
+use honeycomb::generate::{design_surface, Shape};
+use honeycomb::mesh::{read_mesh, validate_base_mesh, PolyMesh};
+use honeycomb::pipeline::{pipeline, PipelineOptions, Pipelined, Walls};
+use honeycomb::{Error, Result};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Where the real roofs are by default: the team's shared data beside the checkout.
+pub const DEFAULT_DIR: &str = "../shared/data";
+
+/// The built-in surfaces `--generated` adds: two developables, a dome, a saddle, a wave.
+const GENERATED: [Shape; 5] = [
+    Shape::Cylinder,
+    Shape::Cone,
+    Shape::Dome,
+    Shape::Saddle,
+    Shape::Wave,
+];
+
+/// What `bench --roofs` runs.
+pub struct RoofsArgs {
+    pub dir: Option<PathBuf>,
+    pub cells: Vec<usize>,
+    pub generated: bool,
+    pub walls: Walls,
+    pub json: bool,
+}
+
+/// One row of the table.
+#[derive(Serialize)]
+struct Row {
+    surface: String,
+    cells_asked: usize,
+    /// `ok`, `not a honeycomb`, `refused` or `skipped`; `reason` says why for the last two.
+    status: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reason: Option<String>,
+    #[serde(flatten)]
+    figures: Option<Figures>,
+}
+
+#[derive(Serialize)]
+struct Figures {
+    cells: usize,
+    seconds: f64,
+    iterations_total: usize,
+    omega_max_deg: f64,
+    delta_max: f64,
+    closeness_max: f64,
+    axis_normal_mean_deg: f64,
+    axis_normal_p95_deg: f64,
+    axis_normal_max_deg: f64,
+    parallel_mean_deg: f64,
+    parallel_p95_deg: f64,
+    edge_length_cv: f64,
+    interior_hexagon_share: f64,
+    walls: Walls,
+}
+
+pub fn run(args: RoofsArgs) -> Result<()> {
+    if let Some(&bad) = args.cells.iter().find(|&&c| !(10..=100_000).contains(&c)) {
+        return Err(Error::Parameter(format!(
+            "--cells {bad}: expected 10 to 100000 cells"
+        )));
+    }
+    let mut surfaces: Vec<(String, Source)> = Vec::new();
+    if args.generated {
+        for shape in GENERATED {
+            let name = format!("{shape:?}").to_lowercase();
+            surfaces.push((name, Source::Generated(shape)));
+        }
+    }
+    let dir = args
+        .dir
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(DEFAULT_DIR));
+    match surface_files(&dir) {
+        Ok(files) => surfaces.extend(files.into_iter().map(|p| (file_name(&p), Source::File(p)))),
+        // The default folder may be absent on a fresh machine: say so and go on.
+        Err(e) if args.dir.is_none() => eprintln!("skipping {}: {e}", dir.display()),
+        Err(e) => return Err(e),
+    }
+    if !args.json {
+        println!(
+            "{:<28} {:>6} {:>6} {:>7} {:>4} {:>9} {:>9} {:>6} {:>6} {:>6} {:>6} {:>6}  status",
+            "surface",
+            "asked",
+            "cells",
+            "T (s)",
+            "#It",
+            "omega_max",
+            "delta_max",
+            "axis",
+            "p95",
+            "par",
+            "p95",
+            "cv"
+        );
+    }
+    for &cells in &args.cells {
+        for (name, source) in &surfaces {
+            let row = bench_one(name, source, cells, args.walls);
+            print_row(&row, args.json)?;
+        }
+    }
+    Ok(())
+}
+
+enum Source {
+    File(PathBuf),
+    Generated(Shape),
+}
+
+/// The mesh files in `dir` (OBJ, OFF, PLY), by name.
+fn surface_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let entries = std::fs::read_dir(dir).map_err(|source| Error::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.is_file()
+                && p.extension()
+                    .and_then(|e| e.to_str())
+                    .is_some_and(|e| ["obj", "off", "ply"].contains(&e.to_lowercase().as_str()))
+        })
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name().map_or_else(
+        || path.display().to_string(),
+        |n| n.to_string_lossy().into(),
+    )
+}
+
+/// The pipeline on one surface, timed from reading it to the measured result.
+fn bench_one(name: &str, source: &Source, cells: usize, walls: Walls) -> Row {
+    let row = |status, reason: Option<String>, figures| Row {
+        surface: name.to_string(),
+        cells_asked: cells,
+        status,
+        reason,
+        figures,
+    };
+    let start = Instant::now();
+    let surface: PolyMesh = match source {
+        Source::Generated(shape) => design_surface(*shape),
+        Source::File(path) => match read_mesh(path) {
+            Ok(loaded) => loaded.mesh,
+            Err(e) => return row("refused", Some(e.to_string()), None),
+        },
+    };
+    // A trivalent hex mesh is a base mesh for `optimize`, not a design surface.
+    if validate_base_mesh(&surface).is_ok() {
+        let reason = "a hex base mesh (every vertex of valence 2 or 3): for optimize".into();
+        return row("skipped", Some(reason), None);
+    }
+    let mut options = PipelineOptions::new(cells);
+    options.walls = walls;
+    let made = match pipeline(&surface, &options, &mut |_| {}) {
+        Ok(made) => made,
+        Err(e) => return row("refused", Some(e.to_string()), None),
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    let status = if made.report.honeycomb {
+        "ok"
+    } else {
+        "not a honeycomb"
+    };
+    row(status, None, Some(figures(&made, seconds)))
+}
+
+fn figures(made: &Pipelined, seconds: f64) -> Figures {
+    let m = &made.measures;
+    Figures {
+        cells: made.report.faces,
+        seconds,
+        iterations_total: made.report.iterations_total,
+        omega_max_deg: m.omega_max_deg,
+        delta_max: m.delta_max,
+        closeness_max: m.closeness_max,
+        axis_normal_mean_deg: m.axis_normal_deg.mean,
+        axis_normal_p95_deg: m.axis_normal_deg.p95,
+        axis_normal_max_deg: m.axis_normal_deg.max,
+        parallel_mean_deg: m.parallel_baseline_deg.mean,
+        parallel_p95_deg: m.parallel_baseline_deg.p95,
+        edge_length_cv: m.edge_length_cv,
+        interior_hexagon_share: interior_hexagon_share(&made.optimized.honeycomb.base),
+        walls: made.report.walls,
+    }
+}
+
+/// The share of hexagons among the cells that touch no boundary, of the result.
+fn interior_hexagon_share(mesh: &PolyMesh) -> f64 {
+    let Ok(conn) = honeycomb::mesh::Connectivity::build(mesh) else {
+        return f64::NAN;
+    };
+    let interior: Vec<usize> = (0..mesh.faces.len())
+        .filter(|&f| mesh.faces[f].iter().all(|&v| !conn.is_boundary_vertex[v]))
+        .collect();
+    let hexagons = interior
+        .iter()
+        .filter(|&&f| mesh.faces[f].len() == 6)
+        .count();
+    hexagons as f64 / interior.len().max(1) as f64
+}
+
+fn print_row(row: &Row, json: bool) -> Result<()> {
+    if json {
+        let text = serde_json::to_string(row).map_err(|e| Error::Parameter(e.to_string()))?;
+        println!("{text}");
+        return Ok(());
+    }
+    let Some(f) = &row.figures else {
+        println!(
+            "{:<28} {:>6} {:>6}  {}: {}",
+            row.surface,
+            row.cells_asked,
+            "-",
+            row.status,
+            row.reason.as_deref().unwrap_or("")
+        );
+        return Ok(());
+    };
+    println!(
+        "{:<28} {:>6} {:>6} {:>7.2} {:>4} {:>9.1e} {:>9.1e} {:>6.2} {:>6.2} {:>6.2} {:>6.2} {:>6.3}  {}",
+        row.surface,
+        row.cells_asked,
+        f.cells,
+        f.seconds,
+        f.iterations_total,
+        f.omega_max_deg,
+        f.delta_max,
+        f.axis_normal_mean_deg,
+        f.axis_normal_p95_deg,
+        f.parallel_mean_deg,
+        f.parallel_p95_deg,
+        f.edge_length_cv,
+        if f.walls == Walls::Across {
+            row.status.to_string()
+        } else {
+            format!("{} (walls {})", row.status, f.walls.label())
+        }
+    );
+    Ok(())
+}
