@@ -209,6 +209,9 @@ impl InitOptions {
 const COUNT_SLACK: f64 = 0.05;
 /// Rescalings of the lattice at most.
 const COUNT_ROUNDS: usize = 3;
+/// A count still further than this from the one asked for is refused: the method cannot lay
+/// cells of one size on this surface.
+const COUNT_TOLERANCE: f64 = 0.15;
 /// A mesh covering less than this share of S's area (with `--cells`) comes from a flattening
 /// that folded over: ARAP is given up for LSCM.
 const MIN_COVERED_SHARE: f64 = 0.5;
@@ -278,6 +281,27 @@ fn counted(
             Ok(again) if off(&again) < off(&made) => made = again,
             _ => break,
         }
+    }
+    if off(&made) > COUNT_TOLERANCE {
+        let why = match &made.report.flat {
+            Some(f) => format!(
+                "its flattening ({}) stretches lengths by a cv of {} and areas from {} to {} \
+                 times (S wraps around a hole, or curves too much to lie flat); --method field \
+                 remeshes S without flattening it",
+                format!("{:?}", f.flattener).to_lowercase(),
+                crate::error::rounded(f.flattening.length_scale_cv, 3),
+                crate::error::rounded(f.flattening.area_scale_min, 3),
+                crate::error::rounded(f.flattening.area_scale_max, 3),
+            ),
+            None => "the field-aligned lattice does not cover S at this size; try another \
+                     --cells or --seed"
+                .into(),
+        };
+        return Err(Error::Mesh(format!(
+            "{} cells for the {target} asked (more than {}% off): {why}",
+            made.report.cells,
+            (100.0 * COUNT_TOLERANCE).round()
+        )));
     }
     Ok(made)
 }

@@ -54,6 +54,8 @@ pub struct OptimizeOptions {
     pub quads: Option<QuadOptions>,
     /// What the solver's unknowns for the wall normals are.
     pub wall_normals: WallNormals,
+    /// Wall normals to start from, one per edge (else each edge turned about S's normal).
+    pub initial_normals: Option<Vec<Vec3>>,
 }
 
 /// The unknowns behind the wall normals.
@@ -255,6 +257,15 @@ impl<'a> Problem<'a> {
     ) -> Problem<'a> {
         let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
         let mut normals = initial_normals(mesh, conn, surface);
+        if let Some(given) = options
+            .initial_normals
+            .as_ref()
+            .filter(|g| g.len() == normals.len())
+        {
+            for (n, &g) in normals.iter_mut().zip(given) {
+                *n = if g.dot(*n) < 0.0 { -g } else { g };
+            }
+        }
         if let Some(a) = &options.axes {
             // Walls that already contain the prescribed axes: a wall normal turning far from its
             // start (through the linearization) can come out flipped and meet its neighbour at 60

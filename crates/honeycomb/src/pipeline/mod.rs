@@ -89,7 +89,7 @@ pub enum Step<'a> {
 pub const MAX_BASE_EDGE_CV: f64 = 0.25;
 
 /// A honeycomb of walls across S is kept when every vertex is this close to S (mean edge
-/// lengths), besides the honeycomb tolerances and no wall quad crossed.
+/// lengths), besides the honeycomb tolerances and no wall quad crossed (see `is_clean`).
 const ACROSS_CLOSENESS: f64 = 0.05;
 
 /// Seeds the pipeline tries with the field method: the next one's singular points and
@@ -178,21 +178,46 @@ fn base_mesh(
             walls,
             &mut notes,
         )?,
+        Walls::Across | Walls::Free if options.init_chosen => {
+            let made = init(surface, init_options)?;
+            if walls == Walls::Across {
+                check_cell_sizes(&made, model_surface)?;
+            }
+            made
+        }
         Walls::Across | Walls::Free => {
-            let chosen = InitOptions {
-                flattener: if options.init_chosen {
-                    init_options.flattener
-                } else {
-                    Flattener::Arap
-                },
+            let arap = InitOptions {
+                flattener: Flattener::Arap,
+                method: Method::Flatten,
                 ..init_options.clone()
             };
-            init(surface, &chosen)?
+            match init(surface, &arap) {
+                Ok(made) if made.report.edge_length_cv <= MAX_BASE_EDGE_CV => made,
+                flat => {
+                    // No flattening lays cells of one size here: S wraps around a hole (a
+                    // band), or curves more than a lattice of this size absorbs.
+                    let why = match &flat {
+                        Ok(made) => format!(
+                            "the flattened grid's cells differ in edge length by a cv of {}",
+                            rounded(made.report.edge_length_cv, 3)
+                        ),
+                        Err(e) => e.to_string(),
+                    };
+                    check_curvature(surface, model_surface, init_options, &why)?;
+                    notes.push(format!(
+                        "{why}; this is the field-aligned mesh (--method field)"
+                    ));
+                    init(
+                        surface,
+                        &InitOptions {
+                            method: Method::Field,
+                            ..init_options.clone()
+                        },
+                    )?
+                }
+            }
         }
     };
-    if walls == Walls::Across {
-        check_cell_sizes(&made, model_surface)?;
-    }
     Ok((made, notes))
 }
 
@@ -369,25 +394,97 @@ fn across_or_none(
         }
         Err(e) => return Err(e),
     };
-    let m = &across.measures;
-    if Report::within_tolerances(m) && m.nonconvex_walls == 0 && m.closeness_max <= ACROSS_CLOSENESS
-    {
+    if is_clean(&across.measures, options.min_edge) {
         return Ok(Ok(across_solved(
             across,
             options,
             start.elapsed().as_secs_f64(),
         )));
     }
-    Ok(Err((
-        format!(
-            "the node axes fitted to S's normals gave no honeycomb here (omega_max {} deg, {} \
-             crossed walls, vertices up to {} edge lengths off S); {fallback}",
-            rounded(m.omega_max_deg, 3),
-            m.nonconvex_walls,
-            rounded(m.closeness_max, 3)
-        ),
-        spent,
-    )))
+    let m = &across.measures;
+    let why = format!(
+        "the node axes fitted to S's normals gave no clean honeycomb here (omega_max {} deg, {} \
+         crossed walls, vertices up to {} edge lengths off S, shortest edge {})",
+        rounded(m.omega_max_deg, 3),
+        m.nonconvex_walls,
+        rounded(m.closeness_max, 3),
+        rounded(m.min_edge_length, 4)
+    );
+    let mut repair_iterations = 0;
+    let repaired = repair(&across, surface, model_surface, options, &mut |info| {
+        repair_iterations += 1;
+        progress(Step::Iteration("repairing", 1, info))
+    })?;
+    spent += repair_iterations;
+    match repaired {
+        Some((optimized, measures)) => {
+            let (dropped, field_iterations) = (across.dropped_cells, across.field_iterations);
+            let mut solved = across_solved(across, options, start.elapsed().as_secs_f64());
+            solved.report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
+            solved.report.walls = Walls::Across;
+            solved.report.iterations_total = spent;
+            solved.report.dropped_boundary_cells = Some(dropped);
+            solved.report.axis_field_iterations = Some(field_iterations);
+            solved.notes.push(format!(
+                "{why}; {repair_iterations} iterations of the guided projection from there \
+                 (without fairness, with a minimum edge length) made it one"
+            ));
+            solved.optimized = optimized;
+            solved.measures = measures;
+            Ok(Ok(solved))
+        }
+        None => Ok(Err((format!("{why}, nor did a repair; {fallback}"), spent))),
+    }
+}
+
+/// A honeycomb across S is kept when its nodes and walls are exact (omega and delta well
+/// within the honeycomb tolerances), no wall quad crossed, every vertex on S and every edge at
+/// least `min_edge` long (model units).
+fn is_clean(m: &Measures, min_edge: Option<f64>) -> bool {
+    m.omega_max_deg <= CLEAN_OMEGA_DEG
+        && m.delta_max <= CLEAN_DELTA
+        && m.nonconvex_walls == 0
+        && m.closeness_max <= ACROSS_CLOSENESS
+        && min_edge.is_none_or(|l| m.min_edge_length >= l * (1.0 - 1e-9))
+}
+
+/// What `is_clean` asks of a node's angles (degrees) and a wall's planarity.
+const CLEAN_OMEGA_DEG: f64 = 0.01;
+const CLEAN_DELTA: f64 = 1e-6;
+
+/// Iterations of the repair at most.
+const REPAIR_ITERATIONS: usize = 20;
+/// The repair's shortest edge, in mean edge lengths.
+const REPAIR_MIN_EDGE: f64 = 0.3;
+
+/// Walls across S that are no clean honeycomb (a node turned over, a wall crossed, a vertex
+/// off S, an edge shorter than `--min-edge`) solved again by the guided projection from where
+/// they stand: the placed vertices and the fitted walls, without the opposite-wall fairness
+/// (which would flatten the fitted axes) and with every edge kept from collapsing (or as long
+/// as asked). `None` when that is no clean honeycomb either.
+fn repair(
+    across: &Across,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    options: &OptimizeOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Option<(Optimized, Measures)>> {
+    let h = &across.honeycomb;
+    let mut repair = options.clone();
+    repair.initial_normals = Some((0..h.edges.len()).map(|e| h.wall_normal(e)).collect());
+    repair.weights.fairness = 0.0;
+    repair.wall_normals = WallNormals::CellPoints;
+    repair.min_edge = options
+        .min_edge
+        .or(Some(REPAIR_MIN_EDGE * h.base.mean_edge_length()));
+    repair.solver.max_iterations = REPAIR_ITERATIONS;
+    let optimized = match optimize(&h.base, Some(surface), &repair, progress) {
+        Ok(optimized) => optimized,
+        Err(Error::Solver(_)) => return Ok(None),
+        Err(e) => return Err(e),
+    };
+    let measures = measure(&optimized.honeycomb, model_surface);
+    Ok(is_clean(&measures, options.min_edge).then_some((optimized, measures)))
 }
 
 /// The plan-view base mesh of uniform walls: S seen along its mean normal or the direction
@@ -444,25 +541,58 @@ fn plan_view(
     }
 }
 
-/// A surface whose hex mesh has cells of very different sizes is refused, with how much it
-/// curves at the scale of a cell.
+/// A lattice of even spacing absorbs S's curvature one unit of 60 degrees per pentagon or
+/// heptagon: beyond this many units per cell a mostly hexagonal honeycomb of cells of one size
+/// is out of reach.
+pub const MAX_CURVATURE_PER_CELL: f64 = 0.02;
+
+/// Refuses a surface that curves more at the scale of the cells asked for than a hexagonal
+/// lattice absorbs, saying how much and what would work; `why` is what the flattening showed.
+fn check_curvature(
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    init_options: &InitOptions,
+    why: &str,
+) -> Result<()> {
+    let area = surface.area();
+    let edge = init_options.size.edge_on(area);
+    let cells = area / crate::init::hexagon_area(edge);
+    curved_at_most(model_surface, edge, cells, why)
+}
+
+/// A mesh made as the caller chose whose cells differ much in size is refused when S curves
+/// more than a lattice absorbs (see [`check_curvature`]).
 fn check_cell_sizes(made: &Initialized, surface: &Surface) -> Result<()> {
     let r = &made.report;
     if r.edge_length_cv <= MAX_BASE_EDGE_CV {
         return Ok(());
     }
-    let units = surface.curvature_units(2.0 * r.edge_length_mean);
+    let why = format!(
+        "the base mesh's cells differ in edge length by a cv of {}",
+        rounded(r.edge_length_cv, 3)
+    );
+    curved_at_most(surface, r.edge_length_mean, r.cells as f64, &why)
+}
+
+/// Refuses S when it curves by more units of 60 degrees at the scale of cells of `edge` than
+/// [`MAX_CURVATURE_PER_CELL`] of `cells`.
+fn curved_at_most(surface: &Surface, edge: f64, cells: f64, why: &str) -> Result<()> {
+    let units = surface.curvature_units(2.0 * edge);
+    if units.positive + units.negative <= MAX_CURVATURE_PER_CELL * cells {
+        return Ok(());
+    }
     Err(Error::Mesh(format!(
         "too curved for a honeycomb of cells of one size: at the scale of a cell (edge {}) S \
          curves by {:.0} units of 60 degrees like a dome and {:.0} like a saddle, and a \
-         hexagonal lattice of even spacing absorbs one unit only with a pentagon or a heptagon; \
-         flattened, its cells differ in edge length by a cv of {:.2} (a honeycomb wants at \
-         most 0.12). Split S into nearly developable pieces (a roof, a vault), or use --method \
-         field for a mesh with pentagons and heptagons and --walls free",
-        rounded(r.edge_length_mean, 4),
+         hexagonal lattice of even spacing absorbs one unit only with a pentagon or a heptagon \
+         (about {:.0} cells here: at most {}% of them); {why}. Split S into nearly developable \
+         pieces (a roof, a vault), or use --method field for a mesh with pentagons and \
+         heptagons and --walls free",
+        rounded(edge, 4),
         units.positive,
         units.negative,
-        r.edge_length_cv
+        cells,
+        (100.0 * MAX_CURVATURE_PER_CELL).round()
     )))
 }
 

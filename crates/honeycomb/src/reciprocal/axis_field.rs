@@ -40,14 +40,14 @@ pub struct AxisFieldOptions {
 impl Default for AxisFieldOptions {
     fn default() -> Self {
         AxisFieldOptions {
-            iterations: 40,
+            iterations: 60,
             rigid: 10.0,
             axes: 1.0,
             across: 1.0,
             fade: 0.5,
             eps: 1e-3,
             energy_growth: 1.1,
-            tolerance: 1e-7,
+            tolerance: 1e-8,
         }
     }
 }

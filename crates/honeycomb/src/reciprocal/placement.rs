@@ -14,9 +14,13 @@ use crate::error::Result;
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::{
-    Constraint, GuidedProjection, IterationInfo, SolveReport, SolverOptions, Substitution,
+    Constraint, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
+    Substitution,
 };
 use crate::surface::Surface;
+
+/// Placement goes on while a vertex is farther than this from S (mean edge lengths).
+const ON_SURFACE: f64 = 0.01;
 
 #[derive(Clone, Debug)]
 pub struct PlacementOptions {
@@ -36,7 +40,7 @@ impl Default for PlacementOptions {
             closeness: 100.0,
             evenness: 3.0,
             anchor: 0.05,
-            boundary_anchor: 1.0,
+            boundary_anchor: 0.2,
         }
     }
 }
@@ -144,7 +148,7 @@ pub fn place(
     let exact = SolverOptions {
         max_iterations: 1,
         eps: 1e-6,
-        eps_min: 1e-8,
+        eps_min: 1e-6,
         ..SolverOptions::default()
     };
     let mut start = GuidedProjection::with_substitution(
@@ -168,15 +172,32 @@ pub fn place(
     let solver_options = SolverOptions {
         max_iterations: options.iterations,
         eps: 1e-6,
-        eps_min: 1e-8,
+        eps_min: 1e-6,
         tolerance: 0.0,
         ..SolverOptions::default()
     };
-    let mut solve = solver.solve(&mut y, &solver_options, progress)?;
+    // The iterations asked for, then more while a vertex stays off S (the tangent planes of
+    // the closeness move as the vertices do), up to twice as many.
+    let mut state = SolveState::new(solver_options.eps);
+    let mut vertices = Vec::new();
+    while state.iterations() < 2 * options.iterations.max(1) {
+        match solver.iterate(&mut y, &mut state, &solver_options)? {
+            Some(info) => progress(&info),
+            None => break,
+        }
+        let x = solver.family_unknowns(&y);
+        vertices = x.chunks(3).map(Vec3::from_slice).collect();
+        slide_onto(surface, &mut vertices, &axes, mean_edge);
+        let farthest = vertices
+            .iter()
+            .map(|&p| surface.closest_point(p).distance)
+            .fold(0.0, f64::max);
+        if state.iterations() >= options.iterations && farthest <= ON_SURFACE * mean_edge {
+            break;
+        }
+    }
+    let mut solve = solver.report(&y, state, &solver_options);
     solve.iterations += first.iterations;
-    let x = solver.family_unknowns(&y);
-    let mut vertices: Vec<Vec3> = x.chunks(3).map(Vec3::from_slice).collect();
-    slide_onto(surface, &mut vertices, &axes, mean_edge);
     Ok(Placed {
         vertices,
         axes,

@@ -156,6 +156,23 @@ impl Sheet {
         (p[b] - p[a]).cross(p[c] - p[a]).normalized()
     }
 
+    /// Sheet units per model unit for `mesh`: neighbouring cells' centroids one apart on
+    /// average.
+    pub fn scale(&self, mesh: &PolyMesh) -> f64 {
+        let inner: Vec<f64> = self
+            .sides
+            .iter()
+            .filter(|s| s[0] < self.cells && s[1] < self.cells)
+            .map(|&[l, r]| (mesh.face_centroid(l) - mesh.face_centroid(r)).norm())
+            .collect();
+        let spacing = inner.iter().sum::<f64>() / inner.len().max(1) as f64;
+        if spacing > 0.0 {
+            1.0 / spacing
+        } else {
+            1.0
+        }
+    }
+
     /// Starting points for `mesh` on a surface with normal `normal_at`: the cells' centroids
     /// scaled so that neighbouring cells are one apart, and each ghost across its boundary
     /// edges from the cells inside, one along the edges' initial wall normals.
@@ -166,14 +183,7 @@ impl Sheet {
         normal_at: impl Fn(Vec3) -> Vec3,
     ) -> Vec<Vec3> {
         let centroids: Vec<Vec3> = (0..self.cells).map(|f| mesh.face_centroid(f)).collect();
-        let inner: Vec<f64> = self
-            .sides
-            .iter()
-            .filter(|s| s[0] < self.cells && s[1] < self.cells)
-            .map(|&[l, r]| (centroids[l] - centroids[r]).norm())
-            .collect();
-        let spacing = inner.iter().sum::<f64>() / inner.len().max(1) as f64;
-        let scale = if spacing > 0.0 { 1.0 / spacing } else { 1.0 };
+        let scale = self.scale(mesh);
         let mut points: Vec<Vec3> = centroids.iter().map(|&c| c * scale).collect();
         let mut sums = vec![(Vec3::ZERO, 0usize); self.ghosts];
         for (e, &[l, r]) in self.sides.iter().enumerate() {
