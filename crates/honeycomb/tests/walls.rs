@@ -1,0 +1,267 @@
+//! Walls across S by default: on built-in design surfaces (two developables, a dome, a saddle
+//! and a wave) at 750, 1500 and 4000 cells, `pipeline` gives exact honeycombs of even,
+//! mostly hexagonal cells whose node axes follow S's normals far better than parallel axes;
+//! surfaces no lattice of one cell size suits are remeshed or refused at once.
+
+use honeycomb::generate::{design_surface, HeightField, Shape};
+use honeycomb::geometry::Vec3;
+use honeycomb::init::{init, CellSize, Flattener, InitOptions, Method};
+use honeycomb::mesh::{Connectivity, PolyMesh};
+use honeycomb::pipeline::{pipeline, PipelineOptions, Pipelined, Walls};
+use std::time::Instant;
+
+const SIZES: [usize; 3] = [750, 1500, 4000];
+
+fn run(surface: &PolyMesh, cells: usize) -> Pipelined {
+    pipeline(surface, &PipelineOptions::new(cells), &mut |_| {})
+        .unwrap_or_else(|e| panic!("{cells} cells: {e}"))
+}
+
+/// The share of hexagons among the cells with no vertex on the boundary.
+fn interior_hexagon_share(mesh: &PolyMesh) -> f64 {
+    let conn = Connectivity::build(mesh).unwrap();
+    let interior: Vec<&Vec<usize>> = mesh
+        .faces
+        .iter()
+        .filter(|f| f.iter().all(|&v| !conn.is_boundary_vertex[v]))
+        .collect();
+    let hexagons = interior.iter().filter(|f| f.len() == 6).count();
+    hexagons as f64 / interior.len() as f64
+}
+
+/// What every honeycomb across S must be, whatever the surface.
+fn assert_clean(made: &Pipelined, what: &str, cells: usize) {
+    let m = &made.measures;
+    let r = &made.report;
+    assert!(r.honeycomb, "{what}: {:?}", made.notes);
+    assert_eq!(r.walls, Walls::Across, "{what}: {:?}", made.notes);
+    assert!(
+        m.omega_max_deg < 0.01,
+        "{what}: omega_max {}",
+        m.omega_max_deg
+    );
+    assert!(m.delta_max < 1e-6, "{what}: delta_max {}", m.delta_max);
+    assert!(
+        m.closeness_max <= 0.05,
+        "{what}: closeness {}",
+        m.closeness_max
+    );
+    assert_eq!(m.nonconvex_walls, 0, "{what}");
+    assert!(
+        m.edge_length_cv <= 0.12,
+        "{what}: edge cv {}",
+        m.edge_length_cv
+    );
+    let base = &made.optimized.honeycomb.base;
+    let share = interior_hexagon_share(base);
+    assert!(share >= 0.97, "{what}: interior hexagons {share}");
+    let off = (base.faces.len() as f64 / cells as f64 - 1.0).abs();
+    assert!(off <= 0.15, "{what}: {} cells", base.faces.len());
+}
+
+/// A cylinder vault and a cone: the axes along S's normals up to the lattice's own step. A
+/// node's axis is the normal of a triangle of three neighbouring cells' points, which leans
+/// off S's normal at the node by about a quarter of an edge over the radius (the node sits a
+/// sixth of the cells' spacing from where S's normal is the triangle's), at 750 cells on the
+/// cylinder half a degree: so the mean is at most 0.5 degrees or within 10% of that step.
+#[test]
+fn developables_have_their_walls_along_the_normals() {
+    for (shape, radius) in [(Shape::Cylinder, 15.0), (Shape::Cone, f64::INFINITY)] {
+        let surface = design_surface(shape);
+        for cells in SIZES {
+            let made = run(&surface, cells);
+            let what = format!("{shape:?} at {cells} cells");
+            assert_clean(&made, &what, cells);
+            let m = &made.measures;
+            let step = 1.1 * (m.mean_edge_length / (4.0 * radius)).to_degrees();
+            let lean = m.axis_normal_deg;
+            assert!(lean.mean <= step.max(0.5), "{what}: {lean:?}");
+            assert!(lean.max <= 2.0, "{what}: {lean:?}");
+            assert!(made.report.iterations_total <= 40, "{what}");
+        }
+    }
+}
+
+/// A dome, a saddle and a wave: no developable's normals are theirs (the paper's Property 3),
+/// so the axes lean; less than two thirds of what parallel axes lean, at the mean, and less
+/// at the 95th percentile.
+#[test]
+fn doubly_curved_surfaces_lean_less_than_parallel_axes() {
+    for shape in [Shape::Dome, Shape::Saddle, Shape::Wave] {
+        let surface = design_surface(shape);
+        for cells in SIZES {
+            let made = run(&surface, cells);
+            let what = format!("{shape:?} at {cells} cells");
+            assert_clean(&made, &what, cells);
+            let (lean, parallel) = (
+                made.measures.axis_normal_deg,
+                made.measures.parallel_baseline_deg,
+            );
+            assert!(
+                lean.mean <= 0.65 * parallel.mean,
+                "{what}: {lean:?} against {parallel:?}"
+            );
+            assert!(
+                lean.p95 < parallel.p95,
+                "{what}: {lean:?} against {parallel:?}"
+            );
+            if cells <= 1500 {
+                assert!(made.report.iterations_total <= 40, "{what}");
+            }
+        }
+    }
+}
+
+/// Uniform walls are the plan-view honeycomb: every axis along S's mean normal.
+#[test]
+fn uniform_walls_are_parallel() {
+    let surface = design_surface(Shape::Dome);
+    let options = PipelineOptions {
+        walls: Walls::Uniform,
+        ..PipelineOptions::new(750)
+    };
+    let made = pipeline(&surface, &options, &mut |_| {}).unwrap();
+    assert!(made.report.honeycomb);
+    assert_eq!(made.report.walls, Walls::Uniform);
+    let h = &made.optimized.honeycomb;
+    for &a in &h.axes {
+        assert!(a.z.abs() > 1.0 - 1e-6, "{a:?}");
+    }
+    let (lean, parallel) = (
+        made.measures.axis_normal_deg,
+        made.measures.parallel_baseline_deg,
+    );
+    assert!(
+        (lean.mean - parallel.mean).abs() < 1e-3,
+        "{lean:?} {parallel:?}"
+    );
+}
+
+/// A vertical band around a hole (a developable closed on itself): no flattening lays cells of
+/// one size on it, `init` says so instead of laying a few, and the pipeline remeshes it with
+/// the field method and stands the walls across it.
+#[test]
+fn a_band_around_a_hole_is_remeshed() {
+    let band = band(5.0, 3.0);
+    let flat = init(
+        &band,
+        &InitOptions {
+            flattener: Flattener::Arap,
+            ..InitOptions::new(CellSize::Cells(750))
+        },
+    );
+    let e = flat.err().expect("no flattening suits a band").to_string();
+    assert!(
+        e.contains("750 asked") && e.contains("--method field"),
+        "{e}"
+    );
+    let made = run(&band, 750);
+    assert_clean(&made, "band", 750);
+    assert!(made.notes.iter().any(|n| n.contains("field-aligned")));
+    assert!(made.measures.axis_normal_deg.mean < 1.0);
+}
+
+/// A bumpy ball open at one end (a head, more or less) curves more than a hexagonal lattice of
+/// this size absorbs, and no flattening lays even cells on it: refused at once, with the
+/// curvature counted and what would work.
+#[test]
+fn a_surface_too_curved_for_the_cells_is_refused_at_once() {
+    let start = Instant::now();
+    let e = pipeline(&bumpy_ball(0.15), &PipelineOptions::new(1500), &mut |_| {})
+        .err()
+        .expect("too curved");
+    assert!(start.elapsed().as_secs_f64() < 5.0);
+    let e = e.to_string();
+    for word in ["too curved", "units of 60 degrees", "--method field"] {
+        assert!(e.contains(word), "{e}");
+    }
+}
+
+/// `init` lays about the cells asked for (within 15%) with every flattening and the field
+/// method, on each built-in surface where it runs at all.
+#[test]
+fn init_keeps_the_cell_count() {
+    for shape in [
+        Shape::Cylinder,
+        Shape::Cone,
+        Shape::Dome,
+        Shape::Saddle,
+        Shape::Wave,
+    ] {
+        let surface = design_surface(shape);
+        let tries = [
+            (Method::Flatten, Flattener::Arap),
+            (Method::Flatten, Flattener::Lscm),
+            (Method::Flatten, Flattener::Project),
+            (Method::Field, Flattener::Arap),
+        ];
+        for (method, flattener) in tries {
+            let options = InitOptions {
+                method,
+                flattener,
+                ..InitOptions::new(CellSize::Cells(1500))
+            };
+            let made = init(&surface, &options)
+                .unwrap_or_else(|e| panic!("{shape:?} {method:?} {flattener:?}: {e}"));
+            let off = (made.report.cells as f64 / 1500.0 - 1.0).abs();
+            assert!(
+                off <= 0.15,
+                "{shape:?} {method:?} {flattener:?}: {} cells",
+                made.report.cells
+            );
+        }
+    }
+}
+
+/// A unit sphere open below 36 degrees from its bottom, its radius waving by `amp` (five
+/// waves around, six from the top down), triangulated.
+fn bumpy_ball(amp: f64) -> PolyMesh {
+    let (around, down) = (160, 80);
+    let mut vertices = vec![Vec3::new(0.0, 0.0, 1.0)];
+    for j in 1..=down {
+        let theta = 0.8 * std::f64::consts::PI * j as f64 / down as f64;
+        for i in 0..around {
+            let phi = std::f64::consts::TAU * i as f64 / around as f64;
+            let r = 1.0 + amp * (5.0 * phi).sin() * (6.0 * theta).sin();
+            vertices.push(Vec3::new(
+                r * theta.sin() * phi.cos(),
+                r * theta.sin() * phi.sin(),
+                r * theta.cos(),
+            ));
+        }
+    }
+    let at = |j: usize, i: usize| 1 + (j - 1) * around + i % around;
+    let mut faces = Vec::new();
+    for i in 0..around {
+        faces.push(vec![0, at(1, i), at(1, i + 1)]);
+    }
+    for j in 1..down {
+        for i in 0..around {
+            faces.push(vec![at(j, i), at(j + 1, i), at(j + 1, i + 1)]);
+            faces.push(vec![at(j, i), at(j + 1, i + 1), at(j, i + 1)]);
+        }
+    }
+    PolyMesh::new(vertices, faces)
+}
+
+/// A vertical cylindrical band of radius `r` and height `h`, triangulated.
+fn band(r: f64, h: f64) -> PolyMesh {
+    let (n, m) = (120, 24);
+    let mut vertices = Vec::new();
+    for j in 0..=m {
+        for i in 0..n {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            vertices.push(Vec3::new(r * t.cos(), r * t.sin(), h * j as f64 / m as f64));
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..m {
+        for i in 0..n {
+            let (a, b) = (j * n + i, j * n + (i + 1) % n);
+            let (c, d) = (b + n, a + n);
+            faces.push(vec![a, b, c]);
+            faces.push(vec![a, c, d]);
+        }
+    }
+    PolyMesh::new(vertices, faces)
+}
