@@ -250,3 +250,73 @@ fn target_families_match_finite_differences() {
     let expected = layout.vertex_at(&x, 0) - positions.get()[0].unwrap();
     assert!((Vec3::from_slice(&res[0..3]) - expected).norm() < 1e-15);
 }
+
+/// The reciprocal sheet's families (rigid triangles with their turns, differences orthogonal
+/// to a direction) and the placement's edge vectors, at points and turns off any solution.
+#[test]
+fn sheet_families_match_finite_differences() {
+    let (_, mesh, surface, conn) = saddle();
+    let sheet = crate::reciprocal::Sheet::new(&mesh, &conn).unwrap();
+    let points = sheet.initial_points(&mesh, &conn, |p| surface.normal_at(p));
+    let (np, nt) = (points.len(), sheet.triangles.len());
+    let mut x: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+    // Turns of up to 0.3 radians: the exponential map's derivative is checked away from 0.
+    x.extend((0..3 * nt).map(|i| 0.3 * jitter(i + 11)));
+    for (i, xi) in x.iter_mut().enumerate().take(3 * np) {
+        *xi += 0.05 * jitter(i + 5);
+    }
+    let s = 3f64.sqrt().recip();
+    let corner = |k: f64| {
+        let a = std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::FRAC_PI_3 * k;
+        Vec3::new(a.cos(), a.sin(), 0.0) * s
+    };
+    let sides = [0.0, 1.0, 2.0].map(|k| corner(k + 1.0) - corner(k));
+    let bases = SharedRotations::new(
+        (0..nt)
+            .map(|t| crate::geometry::rotation::exp(Vec3::new(jitter(t), jitter(t + 1), 0.5)))
+            .collect(),
+    );
+    let directions = |offset: usize| {
+        sheet
+            .sides
+            .iter()
+            .enumerate()
+            .map(|(e, &pair)| {
+                let d = Vec3::new(jitter(e + offset), jitter(e + offset + 1), 1.0);
+                (pair, d.normalized())
+            })
+            .collect::<Vec<_>>()
+    };
+    let layout = Layout::new(np, 0);
+    let edges = directions(40)
+        .into_iter()
+        .filter(|&([a, b], _)| a != b)
+        .map(|(pair, d)| (pair, d * 1.3))
+        .collect();
+    let mut fams: Vec<Box<dyn Constraint>> = vec![
+        Box::new(RigidTriangles {
+            triangles: sheet.triangles.clone(),
+            rotations: np,
+            bases,
+            sides,
+            weight: 10.0,
+        }),
+        Box::new(OrthogonalDifference {
+            name: "orthogonal_difference",
+            rows: directions(7),
+            weight: 1.0,
+            role: crate::solve::Role::Guide,
+            fade: 0.5,
+        }),
+        Box::new(EdgeVectors {
+            layout,
+            edges,
+            weight: 3.0,
+        }),
+    ];
+    assert_families_match(
+        &mut fams,
+        &x,
+        &["rigid_triangles", "orthogonal_difference", "edge_vectors"],
+    );
+}
