@@ -67,6 +67,17 @@ pub fn short_vector(v: crate::Vec3) -> String {
     )
 }
 
+/// A point as a message shows it: `(0.5, 1e-300, NaN)`, each coordinate to 6 significant
+/// digits.
+pub fn short_point(p: crate::Vec3) -> String {
+    format!(
+        "({}, {}, {})",
+        rounded(p.x, 6),
+        rounded(p.y, 6),
+        rounded(p.z, 6)
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::{rounded, short_number};

@@ -184,4 +184,3 @@ pub fn fit_axis_field(
         solve,
     })
 }
-

@@ -202,4 +202,3 @@ pub fn slide_onto(surface: &Surface, vertices: &mut [Vec3], axes: &[Vec3], limit
         }
     }
 }
-
