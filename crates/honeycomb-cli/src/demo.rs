@@ -5,7 +5,7 @@ use honeycomb::export::write_json;
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::mesh::write_mesh;
 use honeycomb::{Error, Result};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -37,12 +37,22 @@ pub fn run(args: Args) -> Result<()> {
     }
     let (base, surface) = lifted_hex_patch(args.shape, args.vertices);
     let prepared = solve_options(&args.opts, &base, Some(&surface))?;
-    optimize_and_write(&base, Some(&surface), &args.opts, prepared, &args.output)?;
     // The inputs too, so the result can be reproduced with `honeycomb optimize`.
-    write_mesh(&args.output.join("input_base.obj"), &base)?;
-    write_mesh(&args.output.join("surface.obj"), &surface)?;
-    write_json(
-        &args.output.join("demo.json"),
-        &serde_json::json!({ "shape": format!("{:?}", args.shape).to_lowercase(), "vertices": args.vertices }),
+    let inputs = |dir: &Path| {
+        write_mesh(&dir.join("input_base.obj"), &base)?;
+        write_mesh(&dir.join("surface.obj"), &surface)?;
+        write_json(
+            &dir.join("demo.json"),
+            &serde_json::json!({ "shape": format!("{:?}", args.shape).to_lowercase(), "vertices": args.vertices }),
+        )
+    };
+    optimize_and_write(
+        &base,
+        Some(&surface),
+        &args.opts,
+        prepared,
+        &args.output,
+        inputs,
     )
+    .map(|_| ())
 }

@@ -5,7 +5,8 @@ use honeycomb::analysis::{extruded_along_normals, read_directions, shading_repor
 use honeycomb::error::short_number;
 use honeycomb::geometry::read_axes;
 use honeycomb::mesh::{
-    nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
+    nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, OutputDir, PolyMesh,
+    Verdict,
 };
 use honeycomb::optimize::{
     optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, Optimized, ParallelOptions,
@@ -433,50 +434,29 @@ pub fn solve_options(
     Ok(Prepared { options, sun_path })
 }
 
-/// `-o DIR` for a structure directory: refused if it is a file; created. Returns whether it
-/// was made now (so that a failure before any output can remove it again).
-pub fn output_dir(dir: &Path) -> Result<bool> {
-    if dir.exists() && !dir.is_dir() {
-        return Err(Error::Parameter(format!(
-            "-o {}: exists and is not a directory",
-            dir.display()
-        )));
-    }
-    let created = !dir.exists();
-    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    Ok(created)
-}
-
-/// Optimizes a designer's base mesh (`optimize`, `demo`), writes the structure directory and
-/// prints the result.
+/// Optimizes a designer's base mesh (`optimize`, `demo`), writes the structure directory (with
+/// what `inputs` writes into it) and prints the result.
 pub fn optimize_and_write(
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
     args: &SolveArgs,
     prepared: Prepared,
     dir: &Path,
+    inputs: impl FnOnce(&Path) -> Result<()>,
 ) -> Result<Report> {
     // Before the solve, so that an unusable -o fails at once, not after a long run.
-    let created = output_dir(dir)?;
-    let result = solve_and_write(base, surface, args, dir, prepared);
-    if result.is_err() && created {
-        // A directory made for outputs that never came (a failure before any was written);
-        // remove_dir leaves one that has files.
-        let _ = std::fs::remove_dir(dir);
-    }
-    result
+    let out = OutputDir::begin(dir)?;
+    solve_and_write(base, surface, args, out, prepared, inputs)
 }
 
-/// `optimize_and_write` once the options are checked and `dir` exists.
+/// `optimize_and_write` once the options are checked and the output directory begun.
 fn solve_and_write(
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
     args: &SolveArgs,
-    dir: &Path,
+    out: OutputDir,
     prepared: Prepared,
+    inputs: impl FnOnce(&Path) -> Result<()>,
 ) -> Result<Report> {
     let output = args.output();
     let nonconvex = nonconvex_faces(base);
@@ -524,17 +504,29 @@ fn solve_and_write(
         ));
     }
     let quads: Vec<(&str, &PolyMesh)> = optimized.quads.iter().map(|q| ("quads.obj", q)).collect();
-    honeycomb::export::write_structure_with(dir, &optimized.honeycomb, &quads, &report)?;
+    let dir = out.finish(verdict(&report), |dir| {
+        honeycomb::export::write_structure_with(dir, &optimized.honeycomb, &quads, &report)?;
+        inputs(dir)
+    })?;
     print_notes(&notes, output);
     finish(
         &report,
         &optimized,
-        dir,
+        &dir,
         output,
         args.cell_points,
         nonconvex.len(),
     )?;
     Ok(report)
+}
+
+/// A honeycomb's outputs take DIR's place; any other go to DIR.failed for inspection.
+pub fn verdict(report: &Report) -> Verdict {
+    if report.honeycomb {
+        Verdict::Passed
+    } else {
+        Verdict::Failed
+    }
 }
 
 /// Notes of what a run changed on the way, on stderr.
@@ -666,7 +658,15 @@ pub fn run(args: Args) -> Result<()> {
         None => None,
     };
     let prepared = solve_options(&args.opts, &base, surface.as_ref())?;
-    optimize_and_write(&base, surface.as_ref(), &args.opts, prepared, &args.output).map(|_| ())
+    optimize_and_write(
+        &base,
+        surface.as_ref(),
+        &args.opts,
+        prepared,
+        &args.output,
+        |_| Ok(()),
+    )
+    .map(|_| ())
 }
 
 /// Prefixes a mesh validation error with the file it is about.
