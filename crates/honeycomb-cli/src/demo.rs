@@ -3,6 +3,7 @@
 use crate::optimize::{optimize_and_write, solve_options, SolveArgs};
 use honeycomb::export::write_json;
 use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::limits::MAX_SOLVE_VERTICES;
 use honeycomb::mesh::write_mesh;
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -29,9 +30,9 @@ pub fn run(args: Args) -> Result<()> {
                 .into(),
         ));
     }
-    if !(50..=2_000_000).contains(&args.vertices) {
+    if !(50..=MAX_SOLVE_VERTICES).contains(&args.vertices) {
         return Err(Error::Parameter(format!(
-            "--vertices {}: expected 50 to 2000000",
+            "--vertices {}: expected 50 to {MAX_SOLVE_VERTICES}",
             args.vertices
         )));
     }

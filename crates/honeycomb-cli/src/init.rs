@@ -6,6 +6,7 @@ use honeycomb::export::stage_json;
 use honeycomb::init::{
     init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, Initialized, Method,
 };
+use honeycomb::limits::check_solve_cells;
 use honeycomb::mesh::{OutputDir, Outputs, PolyMesh};
 use honeycomb::optimize::SECOND_TRY_MIN_EDGE;
 use honeycomb::pipeline::{pipeline, PipelineOptions, Step};
@@ -224,6 +225,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     }
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
+    check_solve_cells(init.size, &surface)?;
     let out = OutputDir::begin(&args.output)?;
     let options = PipelineOptions {
         init,

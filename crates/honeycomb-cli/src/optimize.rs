@@ -5,8 +5,8 @@ use honeycomb::analysis::{extruded_along_normals, read_directions, shading_repor
 use honeycomb::error::short_number;
 use honeycomb::geometry::read_axes;
 use honeycomb::mesh::{
-    nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, OutputDir, PolyMesh,
-    Verdict,
+    check_base_near_surface, nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh,
+    OutputDir, PolyMesh, Verdict,
 };
 use honeycomb::optimize::{
     optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, Optimized, ParallelOptions,
@@ -238,8 +238,8 @@ impl SolveArgs {
         if let Some(light) = self.light {
             unit_light(light).map_err(|_| {
                 Error::Parameter(format!(
-                    "--light {},{},{}: expected a non-zero direction",
-                    light.x, light.y, light.z
+                    "--light {}: expected a non-zero direction",
+                    honeycomb::error::short_vector(light)
                 ))
             })?;
         }
@@ -383,7 +383,9 @@ impl SolveArgs {
     }
 }
 
-/// `DX,DY,DZ` (or space separated) as a vector.
+/// `DX,DY,DZ` (or space separated) as a direction: scaled so that its largest component is
+/// 1, so that 1e-200,1e-200,1e-200 is the direction it is rather than a vector too short to
+/// normalize.
 fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
     let parts: Vec<&str> = s
         .split(|c: char| c == ',' || c.is_whitespace())
@@ -395,7 +397,10 @@ fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
         .collect::<std::result::Result<_, _>>()
         .map_err(|_| format!("`{s}`: expected three numbers DX,DY,DZ"))?;
     match numbers[..] {
-        [x, y, z] if numbers.iter().all(|v| v.is_finite()) => Ok(Vec3::new(x, y, z)),
+        [x, y, z] if numbers.iter().all(|v| v.is_finite()) => {
+            let largest = numbers.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+            Ok(Vec3::new(x, y, z) / largest.max(f64::MIN_POSITIVE))
+        }
         _ => Err(format!("`{s}`: expected three finite numbers DX,DY,DZ")),
     }
 }
@@ -653,6 +658,7 @@ pub fn run(args: Args) -> Result<()> {
         Some(path) => {
             let surface = load(path, output)?;
             validate_surface_mesh(&surface).map_err(|e| name_file(path, e))?;
+            check_base_near_surface(&base, &surface).map_err(|e| name_file(path, e))?;
             Some(surface)
         }
         None => None,

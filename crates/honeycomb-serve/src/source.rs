@@ -5,6 +5,7 @@ use honeycomb::export::read_structure;
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::init::{init, CellSize, Flattener, InitOptions};
 use honeycomb::interactive::Workspace;
+use honeycomb::limits::{check_solve_cells, check_solve_vertices};
 use honeycomb::mesh::{read_mesh, PolyMesh};
 use honeycomb::optimize::{optimize_made_mesh, OptimizeOptions};
 use honeycomb::{Error, Result};
@@ -49,6 +50,7 @@ impl Source {
     pub fn workspace(&self, thickness: Option<f64>) -> Result<Workspace> {
         match self {
             Source::Demo { shape, vertices } => {
+                check_solve_vertices(&format!("--vertices {vertices}"), *vertices)?;
                 let (base, surface) = lifted_hex_patch(*shape, *vertices);
                 Workspace::new(&base, Some(&surface), thickness)
             }
@@ -59,6 +61,7 @@ impl Source {
             }
             Source::Surface { path, cells } => {
                 let surface = read_mesh(path)?.mesh;
+                check_solve_cells(CellSize::Cells(*cells), &surface)?;
                 // As `pipeline` does: the plan-view grid first (a honeycomb from the start
                 // wherever S does not fold over seen from above), else the ARAP one.
                 let options = |flattener| InitOptions {

@@ -13,4 +13,4 @@ pub use io::{
     OutputDir, Outputs, Previous, Verdict,
 };
 pub use polymesh::PolyMesh;
-pub use validate::{validate_base_mesh, validate_surface_mesh};
+pub use validate::{check_base_near_surface, validate_base_mesh, validate_surface_mesh};

@@ -129,14 +129,48 @@ fn check_edge_lengths(mesh: &PolyMesh, conn: &Connectivity) -> Result<()> {
     Ok(())
 }
 
-/// The longest side of the mesh's bounding box (no squares, which underflow on tiny meshes).
-fn extent(mesh: &PolyMesh) -> f64 {
-    let first = mesh.vertices[0];
+/// A base mesh whose bounding box lies farther than this many of its mean edge lengths from
+/// the design surface's is on another surface (or in other units): closeness cannot pull it
+/// there in a solve.
+pub const MAX_SURFACE_GAP: f64 = 10.0;
+
+/// Refuses a base mesh that lies far from its design surface (their bounding boxes more than
+/// [`MAX_SURFACE_GAP`] mean edge lengths apart), before a solve that could only fail.
+pub fn check_base_near_surface(base: &PolyMesh, surface: &PolyMesh) -> Result<()> {
+    let (Some(a), Some(b)) = (bounds(base), bounds(surface)) else {
+        return Ok(());
+    };
+    let gap = (0..3)
+        .map(|k| (a.0[k] - b.1[k]).max(b.0[k] - a.1[k]).max(0.0))
+        .fold(0.0f64, f64::hypot);
+    let edge = base.mean_edge_length();
+    if gap > MAX_SURFACE_GAP * edge {
+        return Err(Error::Mesh(format!(
+            "the base mesh lies {} model units ({} of its mean edge lengths) from the surface \
+             (between their bounding boxes); expected it on the surface, within {MAX_SURFACE_GAP} \
+             edge lengths: are they in the same place and units?",
+            rounded(gap, 6),
+            rounded(gap / edge, 6)
+        )));
+    }
+    Ok(())
+}
+
+/// The corners of the mesh's bounding box as arrays, `None` without vertices.
+fn bounds(mesh: &PolyMesh) -> Option<([f64; 3], [f64; 3])> {
+    let first = *mesh.vertices.first()?;
     let (lo, hi) = mesh
         .vertices
         .iter()
         .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-    (hi - lo).to_array().into_iter().fold(0.0, f64::max)
+    Some((lo.to_array(), hi.to_array()))
+}
+
+/// The longest side of the mesh's bounding box (no squares, which underflow on tiny meshes).
+fn extent(mesh: &PolyMesh) -> f64 {
+    bounds(mesh).map_or(0.0, |(lo, hi)| {
+        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
+    })
 }
 
 /// A face whose corners all lie on one line: every corner's two edges are parallel.
@@ -254,6 +288,26 @@ mod tests {
         let mut mesh = hexagon_pair();
         mesh.vertices.iter_mut().for_each(|p| *p = *p * 1e-6);
         validate_base_mesh(&mesh).unwrap();
+    }
+
+    #[test]
+    fn a_base_mesh_far_from_its_surface_is_refused() {
+        let surface = hexagon_pair();
+        let mut base = hexagon_pair();
+        base.vertices.iter_mut().for_each(|p| p.z += 1e6);
+        let message = check_base_near_surface(&base, &surface)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains(
+                "the base mesh lies 1000000 model units (1000000 of its mean edge lengths)"
+            ),
+            "{message}"
+        );
+        // Beside it by a few edge lengths (a base beyond S's edge), or on it: taken.
+        base.vertices.iter_mut().for_each(|p| p.z -= 1e6 - 5.0);
+        check_base_near_surface(&base, &surface).unwrap();
+        check_base_near_surface(&surface, &surface).unwrap();
     }
 
     #[test]
