@@ -26,6 +26,15 @@ fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
     text
 }
 
+/// OFF text: the header's counts line as given, one line per vertex, then the face lines.
+fn off(counts: &str, vertices: &[[f64; 3]], face_lines: &str) -> String {
+    let mut text = format!("OFF\n{counts}\n");
+    for [x, y, z] in vertices {
+        text.push_str(&format!("{x} {y} {z}\n"));
+    }
+    text + face_lines
+}
+
 /// Two regular hexagons of edge 1 sharing the edge 1-2, both counter-clockwise: a valid base
 /// mesh of 10 vertices and 11 edges.
 fn hexagon_pair() -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
@@ -178,11 +187,7 @@ fn out_of_range_face_index() {
     );
 
     // The same in a 0-based OFF file (index 0 is used, so it is not taken for 1-based).
-    let mut text = String::from("OFF\n10 2 0\n");
-    for [x, y, z] in &vertices {
-        text.push_str(&format!("{x} {y} {z}\n"));
-    }
-    text.push_str("6 0 5 4 3 2 1\n6 1 2 9 10 7 6\n");
+    let text = off("10 2 0", &vertices, "6 0 5 4 3 2 1\n6 1 2 9 10 7 6\n");
     let base = dir.write("range.off", &text);
     optimize_fails(
         &dir,
@@ -725,13 +730,9 @@ fn every_line_ending_and_a_byte_order_mark_read_alike() {
 #[test]
 fn an_off_vertex_count_too_large_names_the_first_face_line() {
     let dir = TempDir::new("an_off_vertex_count_too_large");
-    let (vertices, faces) = hexagon_pair();
+    let (vertices, _) = hexagon_pair();
     // 12 vertices announced, 10 given: the two face lines are read as vertices 10 and 11.
-    let mut text = String::from("OFF\n12 2 0\n");
-    for [x, y, z] in &vertices {
-        text.push_str(&format!("{x} {y} {z}\n"));
-    }
-    text.push_str("6 0 5 4 3 2 1\n6 1 2 9 8 7 6\n");
+    let text = off("12 2 0", &vertices, "6 0 5 4 3 2 1\n6 1 2 9 8 7 6\n");
     let base = dir.write("count.off", &text);
     optimize_fails(
         &dir,
@@ -801,12 +802,7 @@ fn a_light_of_tiny_components_is_a_direction() {
     ]);
     assert!(!stderr(&output).contains("--light"), "{}", stderr(&output));
     // Honeycomb or not after two iterations, the run was made with that light.
-    let written = if output.status.success() {
-        out
-    } else {
-        dir.join("out.failed")
-    };
-    let report = common::read_json(&written, "report.json");
+    let report = common::read_json(&common::written(&output, &out), "report.json");
     assert!(report["shading"].is_object(), "{report}");
     let zero = TempDir::new("a_light_of_no_direction");
     optimize_with_fails(&zero, &["--light", "0,0,0"], &["--light 0,0,0", "non-zero"]);

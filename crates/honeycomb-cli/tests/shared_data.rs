@@ -38,12 +38,7 @@ fn optimize_shared(name: &str, extra: &[&str]) -> Option<Run> {
         stderr(&output)
     );
     // A result that is no honeycomb goes beside the output directory, for inspection.
-    let written = if output.status.success() {
-        out
-    } else {
-        dir.join("out.failed")
-    };
-    let report = std::fs::read_to_string(written.join("report.json"))
+    let report = std::fs::read_to_string(common::written(&output, &out).join("report.json"))
         .ok()
         .map(|text| parse_json(&text, "report.json"));
     let r = Run {

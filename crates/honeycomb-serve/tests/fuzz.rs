@@ -76,7 +76,7 @@ const ALLOWANCE: usize = 1 << 20;
 
 /// Runs `case` on `input` on a thread of its own and fails on a panic, a hang or a peak of
 /// live heap beyond the bound for `input`'s size.
-fn bounded(input: Vec<u8>, case: fn(&[u8])) -> Result<(), TestCaseError> {
+fn bounded(input: Vec<u8>, case: Reader) -> Result<(), TestCaseError> {
     let (done, outcome) = std::sync::mpsc::channel();
     let len = input.len();
     std::thread::spawn(move || {
@@ -145,10 +145,13 @@ fn message(bytes: &[u8]) {
     }
 }
 
+/// What reads an input: a reader and the checks after it, or the message parser.
+type Reader = fn(&[u8]);
+
 /// Valid inputs of each reader: a hexagon disk in the format, and a binary PLY.
-fn valid_files() -> Vec<(fn(&[u8]), Vec<u8>)> {
+fn valid_files() -> Vec<(Reader, Vec<u8>)> {
     let mesh = hex_disk(1.0);
-    let mut files: Vec<(fn(&[u8]), Vec<u8>)> = Vec::new();
+    let mut files: Vec<(Reader, Vec<u8>)> = Vec::new();
     let mut text = Vec::new();
     write_obj(&mut text, &mesh).unwrap();
     files.push((obj, text));
@@ -285,7 +288,7 @@ fn apply(bytes: &mut Vec<u8>, m: &Mutation) {
 
 #[test]
 fn arbitrary_bytes_never_break_a_reader_or_the_message_parser() {
-    let readers: [(&str, fn(&[u8])); 4] = [
+    let readers: [(&str, Reader); 4] = [
         ("obj", obj),
         ("off", off),
         ("ply", ply),
@@ -300,7 +303,7 @@ fn arbitrary_bytes_never_break_a_reader_or_the_message_parser() {
     }
     // A plausible start makes the bytes after it reach deeper.
     for (name, start, reader) in [
-        ("ply", "ply\nformat ascii 1.0\n", ply as fn(&[u8])),
+        ("ply", "ply\nformat ascii 1.0\n", ply as Reader),
         (
             "ply",
             "ply\nformat binary_big_endian 1.0\nelement vertex 3\n",
@@ -319,12 +322,8 @@ fn arbitrary_bytes_never_break_a_reader_or_the_message_parser() {
 
 #[test]
 fn broken_valid_files_and_messages_give_a_value_or_an_error() {
-    let mut inputs: Vec<(fn(&[u8]), Vec<u8>)> = valid_files();
-    inputs.extend(
-        valid_messages()
-            .into_iter()
-            .map(|m| (message as fn(&[u8]), m)),
-    );
+    let mut inputs: Vec<(Reader, Vec<u8>)> = valid_files();
+    inputs.extend(valid_messages().into_iter().map(|m| (message as Reader, m)));
     // Unbroken, each reads.
     for (reader, bytes) in &inputs {
         bounded(bytes.clone(), *reader).unwrap();

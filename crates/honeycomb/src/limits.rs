@@ -78,7 +78,6 @@ pub fn check_solve(base: &PolyMesh, iterations: usize) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Vec3;
 
     #[test]
     fn solves_beyond_the_bounds_are_refused_naming_the_option() {
@@ -90,15 +89,7 @@ mod tests {
         );
         check_solve_vertices("--vertices 1500", 1500).unwrap();
         // A unit square: 1e-3 edges make about 385k cells.
-        let square = PolyMesh::new(
-            vec![
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(1.0, 1.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
-            ],
-            vec![vec![0, 1, 2, 3]],
-        );
+        let square = PolyMesh::unit_square();
         let e = check_solve_cells(CellSize::EdgeLength(1e-3), &square).unwrap_err();
         assert!(
             e.to_string()

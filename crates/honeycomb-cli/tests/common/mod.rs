@@ -186,6 +186,17 @@ pub fn assert_clean_failure(output: &Output, keywords: &[&str], out_dir: Option<
     line.to_string()
 }
 
+/// Where a run asked for `-o out` put its outputs: `out`, or `out.failed` when the result
+/// failed its verdict (no honeycomb).
+pub fn written(output: &Output, out: &Path) -> PathBuf {
+    if output.status.success() {
+        return out.to_path_buf();
+    }
+    let mut failed = out.as_os_str().to_os_string();
+    failed.push(".failed");
+    PathBuf::from(failed)
+}
+
 /// The `../shared/data` directory next to the workspace, if present.
 pub fn shared_data() -> Option<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");

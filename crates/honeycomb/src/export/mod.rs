@@ -71,7 +71,7 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
     };
     let bytes = read_file(&path)?;
     let text = std::str::from_utf8(&bytes).map_err(|_| bad(0, "not UTF-8 text".into()))?;
-    let s: StructureJson = serde_json::from_str(&text)
+    let s: StructureJson = serde_json::from_str(text)
         .map_err(|e| bad(e.line(), format!("not a structure.json: {e}")))?;
     let nv = s.vertices.len();
     if s.node_axes.len() != nv || s.offset_vertices.len() != nv {
