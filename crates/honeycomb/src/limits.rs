@@ -106,7 +106,8 @@ mod tests {
         check_solve_cells(CellSize::EdgeLength(1.0), &square).unwrap();
         let e = check_solve_cells(CellSize::EdgeLength(1e308), &square).unwrap_err();
         assert!(
-            e.to_string().contains("--edge-length 1e308: expected"),
+            e.to_string()
+                .contains("--edge-length 1e308: no cell of that size fits"),
             "{e}"
         );
         let e = check_solve(&square, 30_000_000).unwrap_err();

@@ -226,14 +226,33 @@ pub(crate) fn check_edge_length(surface: &PolyMesh, size: CellSize) -> Result<()
         return Ok(());
     };
     let (shortest, longest) = edge_length_range(surface);
-    if l < shortest || l > longest {
-        return Err(Error::Parameter(format!(
-            "--edge-length {}: expected {} to {} model units on this surface (shorter gives \
-             more than {MAX_CELLS} cells on its area {}, longer a cell larger than the surface)",
+    let range = format!(
+        "{} to {} model units",
+        rounded(shortest, 6),
+        rounded(longest, 6)
+    );
+    if l > longest {
+        // About the surface as much as the option: the front names the file.
+        return Err(Error::Mesh(format!(
+            "--edge-length {}: no cell of that size fits on the surface (the diagonal of its \
+             bounding box is {}): choose smaller cells, {range}",
             rounded(l, 6),
-            rounded(shortest, 6),
-            rounded(longest, 6),
-            rounded(surface.area(), 6),
+            rounded(longest, 6)
+        )));
+    }
+    if l < shortest {
+        let area = surface.area();
+        let cells = area / hexagon_area(1.0) / l / l;
+        let cells = if cells < 1e9 {
+            format!("{cells:.0}")
+        } else {
+            rounded(cells, 3)
+        };
+        return Err(Error::Parameter(format!(
+            "--edge-length {}: about {cells} cells on a surface of area {}; expected at most \
+             {MAX_CELLS}: choose larger cells, {range}",
+            rounded(l, 6),
+            rounded(area, 6)
         )));
     }
     Ok(())
