@@ -26,7 +26,8 @@ pub struct Args {
 pub fn check_tolerance(tolerance: f64) -> Result<()> {
     if !tolerance.is_finite() || tolerance <= 0.0 || tolerance >= 0.5 {
         return Err(Error::Parameter(format!(
-            "--tolerance {tolerance}: expected a positive area below 0.5 steradians"
+            "--tolerance {}: expected a positive area below 0.5 steradians",
+            honeycomb::error::rounded(tolerance, 6)
         )));
     }
     Ok(())

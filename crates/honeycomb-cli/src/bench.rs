@@ -3,6 +3,7 @@
 //! process's peak memory.
 
 use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::limits::{MAX_SOLVE_VERTICES, MAX_VERTEX_ITERATIONS};
 use honeycomb::optimize::{optimize, OptimizeOptions};
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
@@ -102,9 +103,21 @@ pub fn run(args: Args) -> Result<()> {
             args.iterations
         )));
     }
-    if let Some(&bad) = args.sizes.iter().find(|&&s| !(50..=2_000_000).contains(&s)) {
+    if let Some(&bad) = args
+        .sizes
+        .iter()
+        .find(|&&s| !(50..=MAX_SOLVE_VERTICES).contains(&s))
+    {
         return Err(Error::Parameter(format!(
-            "--sizes {bad}: expected 50 to 2000000 vertices"
+            "--sizes {bad}: expected 50 to {MAX_SOLVE_VERTICES} vertices"
+        )));
+    }
+    let largest = args.sizes.iter().copied().max().unwrap_or(0);
+    if largest * args.iterations > MAX_VERTEX_ITERATIONS {
+        return Err(Error::Parameter(format!(
+            "--iterations {} with --sizes {largest}: expected at most {} iterations at that size",
+            args.iterations,
+            MAX_VERTEX_ITERATIONS / largest
         )));
     }
     if !args.json {

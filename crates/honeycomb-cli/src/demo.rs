@@ -3,9 +3,10 @@
 use crate::optimize::{optimize_and_write, solve_options, SolveArgs};
 use honeycomb::export::write_json;
 use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::limits::MAX_SOLVE_VERTICES;
 use honeycomb::mesh::write_mesh;
 use honeycomb::{Error, Result};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -29,20 +30,30 @@ pub fn run(args: Args) -> Result<()> {
                 .into(),
         ));
     }
-    if !(50..=2_000_000).contains(&args.vertices) {
+    if !(50..=MAX_SOLVE_VERTICES).contains(&args.vertices) {
         return Err(Error::Parameter(format!(
-            "--vertices {}: expected 50 to 2000000",
+            "--vertices {}: expected 50 to {MAX_SOLVE_VERTICES}",
             args.vertices
         )));
     }
     let (base, surface) = lifted_hex_patch(args.shape, args.vertices);
     let prepared = solve_options(&args.opts, &base, Some(&surface))?;
-    optimize_and_write(&base, Some(&surface), &args.opts, prepared, &args.output)?;
     // The inputs too, so the result can be reproduced with `honeycomb optimize`.
-    write_mesh(&args.output.join("input_base.obj"), &base)?;
-    write_mesh(&args.output.join("surface.obj"), &surface)?;
-    write_json(
-        &args.output.join("demo.json"),
-        &serde_json::json!({ "shape": format!("{:?}", args.shape).to_lowercase(), "vertices": args.vertices }),
+    let inputs = |dir: &Path| {
+        write_mesh(&dir.join("input_base.obj"), &base)?;
+        write_mesh(&dir.join("surface.obj"), &surface)?;
+        write_json(
+            &dir.join("demo.json"),
+            &serde_json::json!({ "shape": format!("{:?}", args.shape).to_lowercase(), "vertices": args.vertices }),
+        )
+    };
+    optimize_and_write(
+        &base,
+        Some(&surface),
+        &args.opts,
+        prepared,
+        &args.output,
+        inputs,
     )
+    .map(|_| ())
 }

@@ -4,6 +4,7 @@ use crate::progress::Output;
 use honeycomb::edit::{reciprocal, reciprocal_range, resize_cell, subdivide};
 use honeycomb::error::short_number;
 use honeycomb::export::{read_structure, write_structure};
+use honeycomb::mesh::{write_output_dir, Verdict};
 use honeycomb::report::{EditReport, Report};
 use honeycomb::structure::{measure, Measures};
 use honeycomb::surface::Surface;
@@ -121,7 +122,9 @@ pub fn run(args: Args) -> Result<()> {
     }
     let json =
         serde_json::to_string_pretty(&report).map_err(|e| Error::Parameter(e.to_string()))?;
-    write_structure(&out, &edited, &report)?;
+    write_output_dir(&out, Verdict::Passed, |dir| {
+        write_structure(dir, &edited, &report)
+    })?;
     match Output::from_flags(args.quiet, args.json) {
         Output::Json => println!("{json}"),
         Output::Human => {

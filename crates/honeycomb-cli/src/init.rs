@@ -1,12 +1,13 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{finish, load, name_file, output_dir, print_notes, SolveArgs};
+use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs};
 use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
     init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, Initialized, Method,
 };
-use honeycomb::mesh::{Outputs, PolyMesh};
+use honeycomb::limits::check_solve_cells;
+use honeycomb::mesh::{OutputDir, Outputs, PolyMesh};
 use honeycomb::pipeline::{pipeline, PipelineOptions, Step};
 use honeycomb::reciprocal::AcrossOptions;
 use honeycomb::{Error, Result};
@@ -199,7 +200,8 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     }
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
-    let created = output_dir(&args.output)?;
+    check_solve_cells(init.size, &surface).map_err(|e| name_file(&args.surface, e))?;
+    let out = OutputDir::begin(&args.output)?;
     let options = PipelineOptions {
         init,
         init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,
@@ -227,27 +229,23 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     bar.finish();
     let made = match result {
         Ok(made) => made,
-        Err(e) => {
-            if created {
-                let _ = std::fs::remove_dir(&args.output);
-            }
-            return Err(name_file(&args.surface, e));
-        }
+        Err(e) => return Err(name_file(&args.surface, e)),
     };
     let mut report = made.report;
     report.seconds = start.elapsed().as_secs_f64();
-    let dir = &args.output;
-    let mut outputs = Outputs::new();
-    // The mesh the kept solve started from, so that `optimize` repeats it.
-    outputs.mesh(&dir.join("initial.obj"), &made.base)?;
-    outputs.mesh(&dir.join("surface.obj"), &surface)?;
-    stage_json(
-        &mut outputs,
-        &dir.join("init.json"),
-        &made.initialized.report,
-    )?;
-    outputs.commit()?;
-    honeycomb::export::write_structure(dir, &made.optimized.honeycomb, &report)?;
+    let dir = &out.finish(verdict(&report), |dir| {
+        let mut outputs = Outputs::new();
+        // The mesh the kept solve started from, so that `optimize` repeats it.
+        outputs.mesh(&dir.join("initial.obj"), &made.base)?;
+        outputs.mesh(&dir.join("surface.obj"), &surface)?;
+        stage_json(
+            &mut outputs,
+            &dir.join("init.json"),
+            &made.initialized.report,
+        )?;
+        outputs.commit()?;
+        honeycomb::export::write_structure(dir, &made.optimized.honeycomb, &report)
+    })?;
     if output == Output::Human {
         print_report(&made.initialized, output, &dir.join("initial.obj"))?;
     }

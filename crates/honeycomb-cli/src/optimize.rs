@@ -5,7 +5,8 @@ use honeycomb::analysis::{extruded_along_normals, read_directions, shading_repor
 use honeycomb::error::short_number;
 use honeycomb::geometry::read_axes;
 use honeycomb::mesh::{
-    nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh, PolyMesh,
+    check_base_near_surface, nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh,
+    OutputDir, PolyMesh, Verdict,
 };
 use honeycomb::optimize::{
     optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, Optimized, ParallelOptions,
@@ -238,8 +239,8 @@ impl SolveArgs {
         if let Some(light) = self.light {
             unit_light(light).map_err(|_| {
                 Error::Parameter(format!(
-                    "--light {},{},{}: expected a non-zero direction",
-                    light.x, light.y, light.z
+                    "--light {}: expected a non-zero direction",
+                    honeycomb::error::short_vector(light)
                 ))
             })?;
         }
@@ -383,7 +384,9 @@ impl SolveArgs {
     }
 }
 
-/// `DX,DY,DZ` (or space separated) as a vector.
+/// `DX,DY,DZ` (or space separated) as a direction: scaled so that its largest component is
+/// 1, so that 1e-200,1e-200,1e-200 is the direction it is rather than a vector too short to
+/// normalize.
 fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
     let parts: Vec<&str> = s
         .split(|c: char| c == ',' || c.is_whitespace())
@@ -395,7 +398,10 @@ fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
         .collect::<std::result::Result<_, _>>()
         .map_err(|_| format!("`{s}`: expected three numbers DX,DY,DZ"))?;
     match numbers[..] {
-        [x, y, z] if numbers.iter().all(|v| v.is_finite()) => Ok(Vec3::new(x, y, z)),
+        [x, y, z] if numbers.iter().all(|v| v.is_finite()) => {
+            let largest = numbers.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+            Ok(Vec3::new(x, y, z) / largest.max(f64::MIN_POSITIVE))
+        }
         _ => Err(format!("`{s}`: expected three finite numbers DX,DY,DZ")),
     }
 }
@@ -434,50 +440,29 @@ pub fn solve_options(
     Ok(Prepared { options, sun_path })
 }
 
-/// `-o DIR` for a structure directory: refused if it is a file; created. Returns whether it
-/// was made now (so that a failure before any output can remove it again).
-pub fn output_dir(dir: &Path) -> Result<bool> {
-    if dir.exists() && !dir.is_dir() {
-        return Err(Error::Parameter(format!(
-            "-o {}: exists and is not a directory",
-            dir.display()
-        )));
-    }
-    let created = !dir.exists();
-    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    Ok(created)
-}
-
-/// Optimizes a designer's base mesh (`optimize`, `demo`), writes the structure directory and
-/// prints the result.
+/// Optimizes a designer's base mesh (`optimize`, `demo`), writes the structure directory (with
+/// what `inputs` writes into it) and prints the result.
 pub fn optimize_and_write(
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
     args: &SolveArgs,
     prepared: Prepared,
     dir: &Path,
+    inputs: impl FnOnce(&Path) -> Result<()>,
 ) -> Result<Report> {
     // Before the solve, so that an unusable -o fails at once, not after a long run.
-    let created = output_dir(dir)?;
-    let result = solve_and_write(base, surface, args, dir, prepared);
-    if result.is_err() && created {
-        // A directory made for outputs that never came (a failure before any was written);
-        // remove_dir leaves one that has files.
-        let _ = std::fs::remove_dir(dir);
-    }
-    result
+    let out = OutputDir::begin(dir)?;
+    solve_and_write(base, surface, args, out, prepared, inputs)
 }
 
-/// `optimize_and_write` once the options are checked and `dir` exists.
+/// `optimize_and_write` once the options are checked and the output directory begun.
 fn solve_and_write(
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
     args: &SolveArgs,
-    dir: &Path,
+    out: OutputDir,
     prepared: Prepared,
+    inputs: impl FnOnce(&Path) -> Result<()>,
 ) -> Result<Report> {
     let output = args.output();
     let nonconvex = nonconvex_faces(base);
@@ -525,17 +510,29 @@ fn solve_and_write(
         ));
     }
     let quads: Vec<(&str, &PolyMesh)> = optimized.quads.iter().map(|q| ("quads.obj", q)).collect();
-    honeycomb::export::write_structure_with(dir, &optimized.honeycomb, &quads, &report)?;
+    let dir = out.finish(verdict(&report), |dir| {
+        honeycomb::export::write_structure_with(dir, &optimized.honeycomb, &quads, &report)?;
+        inputs(dir)
+    })?;
     print_notes(&notes, output);
     finish(
         &report,
         &optimized,
-        dir,
+        &dir,
         output,
         args.cell_points,
         nonconvex.len(),
     )?;
     Ok(report)
+}
+
+/// A honeycomb's outputs take DIR's place; any other go to DIR.failed for inspection.
+pub fn verdict(report: &Report) -> Verdict {
+    if report.honeycomb {
+        Verdict::Passed
+    } else {
+        Verdict::Failed
+    }
 }
 
 /// Notes of what a run changed on the way, on stderr.
@@ -653,12 +650,21 @@ pub fn run(args: Args) -> Result<()> {
         Some(path) => {
             let surface = load(path, output)?;
             validate_surface_mesh(&surface).map_err(|e| name_file(path, e))?;
+            check_base_near_surface(&base, &surface).map_err(|e| name_file(path, e))?;
             Some(surface)
         }
         None => None,
     };
     let prepared = solve_options(&args.opts, &base, surface.as_ref())?;
-    optimize_and_write(&base, surface.as_ref(), &args.opts, prepared, &args.output).map(|_| ())
+    optimize_and_write(
+        &base,
+        surface.as_ref(),
+        &args.opts,
+        prepared,
+        &args.output,
+        |_| Ok(()),
+    )
+    .map(|_| ())
 }
 
 /// Prefixes a mesh validation error with the file it is about.

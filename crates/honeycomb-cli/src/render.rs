@@ -3,7 +3,7 @@
 use honeycomb::analysis::spherical_image;
 use honeycomb::export::read_structure;
 use honeycomb::mesh::{read_mesh, write_atomically, Connectivity};
-use honeycomb::render::{spherical_scene, walls_scene, Coloring, Scene, View};
+use honeycomb::render::{check_width, spherical_scene, walls_scene, Coloring, Scene, View};
 use honeycomb::structure::measure;
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result};
@@ -60,12 +60,7 @@ pub fn run(args: Args) -> Result<()> {
         };
         write_atomically(&args.output, |w| w.write_all(&bytes))
     };
-    if !(200..=20_000).contains(&args.width) {
-        return Err(Error::Parameter(format!(
-            "--width {}: expected 200 to 20000 pixels",
-            args.width
-        )));
-    }
+    check_width(args.width)?;
     let (h, _) = read_structure(&args.dir)?;
     if args.spherical {
         crate::analyse::check_tolerance(args.tolerance)?;

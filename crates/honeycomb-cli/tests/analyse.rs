@@ -75,6 +75,8 @@ fn an_optimized_honeycomb_satisfies_proposition_1_and_an_unoptimized_mesh_does_n
         !out.status.success(),
         "one damped iteration should not give a honeycomb"
     );
+    // A result that fails its verdict is written beside DIR, for inspection.
+    let rough = tmp.join("rough.failed");
     let out = run([
         "analyse",
         rough.to_str().unwrap(),

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{assert_clean_failure, run, stdout, TempDir};
+use common::{assert_clean_failure, run, stderr, stdout, TempDir};
 use honeycomb::export::write_structure;
 use honeycomb::generate::hex_disk;
 use honeycomb::geometry::Vec3;
@@ -24,6 +24,15 @@ fn obj(vertices: &[[f64; 3]], faces: &[Vec<usize>]) -> String {
         text.push_str(&format!("f {}\n", indices.join(" ")));
     }
     text
+}
+
+/// OFF text: the header's counts line as given, one line per vertex, then the face lines.
+fn off(counts: &str, vertices: &[[f64; 3]], face_lines: &str) -> String {
+    let mut text = format!("OFF\n{counts}\n");
+    for [x, y, z] in vertices {
+        text.push_str(&format!("{x} {y} {z}\n"));
+    }
+    text + face_lines
 }
 
 /// Two regular hexagons of edge 1 sharing the edge 1-2, both counter-clockwise: a valid base
@@ -178,11 +187,7 @@ fn out_of_range_face_index() {
     );
 
     // The same in a 0-based OFF file (index 0 is used, so it is not taken for 1-based).
-    let mut text = String::from("OFF\n10 2 0\n");
-    for [x, y, z] in &vertices {
-        text.push_str(&format!("{x} {y} {z}\n"));
-    }
-    text.push_str("6 0 5 4 3 2 1\n6 1 2 9 10 7 6\n");
+    let text = off("10 2 0", &vertices, "6 0 5 4 3 2 1\n6 1 2 9 10 7 6\n");
     let base = dir.write("range.off", &text);
     optimize_fails(
         &dir,
@@ -689,5 +694,134 @@ fn reciprocal_default_on_a_structure_with_a_short_edge() {
     assert!(
         (by - 0.5 * limit).abs() < 1e-9 * limit,
         "{operation}, limit {limit}"
+    );
+}
+
+#[test]
+fn every_line_ending_and_a_byte_order_mark_read_alike() {
+    let dir = TempDir::new("every_line_ending_and_a_byte_order_mark_read_alike");
+    let valid = std::fs::read_to_string(valid_base(&dir)).unwrap();
+    let ply = dir.join("base.ply");
+    write_mesh(&ply, &hex_disk(2.0)).unwrap();
+    let ply = std::fs::read_to_string(&ply).unwrap();
+    // An OBJ with CR-only endings was one line: "empty mesh".
+    for (name, text) in [
+        ("cr.obj", valid.replace('\n', "\r")),
+        ("crlf.obj", valid.replace('\n', "\r\n")),
+        ("bom.obj", format!("\u{feff}{valid}")),
+        ("bom.ply", format!("\u{feff}{ply}")),
+        ("cr.ply", ply.replace('\n', "\r")),
+    ] {
+        let base = dir.write(name, &text);
+        let out = dir.join(&format!("out-{name}"));
+        let output = run([
+            "optimize".as_ref(),
+            base.as_os_str(),
+            "-q".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+        common::assert_success(&output, name);
+        let report = common::read_json(&out, "report.json");
+        assert_eq!(report["vertices"], 24, "{name}: {report}");
+    }
+}
+
+#[test]
+fn an_off_vertex_count_too_large_names_the_first_face_line() {
+    let dir = TempDir::new("an_off_vertex_count_too_large");
+    let (vertices, _) = hexagon_pair();
+    // 12 vertices announced, 10 given: the two face lines are read as vertices 10 and 11.
+    let text = off("12 2 0", &vertices, "6 0 5 4 3 2 1\n6 1 2 9 8 7 6\n");
+    let base = dir.write("count.off", &text);
+    optimize_fails(
+        &dir,
+        &base,
+        &[
+            "the header says 2 faces, but only 0 were found",
+            "line 13, read as vertex 10, reads like a face",
+            "is the vertex count 10",
+        ],
+    );
+}
+
+#[test]
+fn a_mesh_below_the_smallest_scale() {
+    let dir = TempDir::new("a_mesh_below_the_smallest_scale");
+    let (vertices, faces) = hexagon_pair();
+    // It was "corners lie on one line" at 1e-100, and "zero-length edge" with 300-digit
+    // coordinates at 1e-300.
+    for (scale, spans) in [(1e-100, "3.4641e-100"), (1e-300, "3.4641e-300")] {
+        let small: Vec<[f64; 3]> = vertices.iter().map(|p| p.map(|c| c * scale)).collect();
+        let base = dir.write("small.obj", &obj(&small, &faces));
+        let shown = format!("the mesh spans only {spans} model units");
+        let line = optimize_fails(&dir, &base, &[&shown, "at least 1e-6", "rescale"]);
+        assert!(line.len() < 300, "{line}");
+    }
+}
+
+#[test]
+fn numbers_in_messages_have_at_most_six_digits() {
+    let dir = TempDir::new("numbers_in_messages_have_at_most_six_digits");
+    optimize_with_fails(
+        &dir,
+        &["--w-close", "1e308"],
+        &["--w-close 1e308: expected a weight"],
+    );
+    optimize_with_fails(
+        &dir,
+        &["--w-guide=-0.1234567891"],
+        &["--w-guide -0.123457:"],
+    );
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let output = run([
+        "analyse".as_ref(),
+        structure.as_os_str(),
+        "--tolerance".as_ref(),
+        "1e308".as_ref(),
+    ]);
+    assert_clean_failure(&output, &["--tolerance 1e308: expected"], None);
+}
+
+#[test]
+fn a_light_of_tiny_components_is_a_direction() {
+    // It was called "not non-zero": its squared length underflows.
+    let dir = TempDir::new("a_light_of_tiny_components_is_a_direction");
+    let base = valid_base(&dir);
+    let out = dir.join("out");
+    let output = run([
+        "optimize".as_ref(),
+        base.as_os_str(),
+        "--light".as_ref(),
+        "1e-200,1e-200,-1e-200".as_ref(),
+        "--iterations".as_ref(),
+        "2".as_ref(),
+        "-q".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(!stderr(&output).contains("--light"), "{}", stderr(&output));
+    // Honeycomb or not after two iterations, the run was made with that light.
+    let report = common::read_json(&common::written(&output, &out), "report.json");
+    assert!(report["shading"].is_object(), "{report}");
+    let zero = TempDir::new("a_light_of_no_direction");
+    optimize_with_fails(&zero, &["--light", "0,0,0"], &["--light 0,0,0", "non-zero"]);
+}
+
+#[test]
+fn a_surface_far_from_the_base_mesh() {
+    // It solved, failed, and suggested more --iterations.
+    let dir = TempDir::new("a_surface_far_from_the_base_mesh");
+    let (vertices, faces) = hexagon_pair();
+    let far: Vec<[f64; 3]> = vertices.iter().map(|&[x, y, z]| [x, y, z + 1e6]).collect();
+    let surface = dir.write("far.obj", &obj(&far, &faces));
+    optimize_with_fails(
+        &dir,
+        &["--surface", surface.to_str().unwrap()],
+        &[
+            "far.obj",
+            "the base mesh lies 1000000 model units",
+            "from the surface",
+        ],
     );
 }

@@ -4,7 +4,7 @@
 mod common;
 
 use common::{
-    assert_clean_failure, assert_success, entries, mesh_edges, number, parse_json,
+    assert_clean_failure, assert_success, entries, mesh_edges, number, parse_json, read_json,
     read_written_mesh, run, stderr, stdout, TempDir, REPORT_KEYS,
 };
 use honeycomb::generate::hex_disk;
@@ -597,4 +597,153 @@ fn demo_solves_for_cell_points_by_default() {
         "{}",
         stderr(&output)
     );
+}
+
+/// `honeycomb ARGS...` with `-q`, as `OsString`s.
+fn quiet_run(args: &[&std::ffi::OsStr]) -> std::process::Output {
+    let mut all: Vec<&std::ffi::OsStr> = args.to_vec();
+    all.push("-q".as_ref());
+    run(&all)
+}
+
+/// The bytes of every file in `dir`, by name.
+fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    entries(dir)
+        .into_iter()
+        .map(|name| {
+            let bytes = std::fs::read(dir.join(&name)).unwrap();
+            (name, bytes)
+        })
+        .collect()
+}
+
+#[test]
+fn a_run_replaces_its_output_directory_whole() {
+    let dir = TempDir::new("a_run_replaces_its_output_directory_whole");
+    let out = dir.join("out");
+    assert_success(&small_demo(&out, &["-q"]), "demo");
+    assert_success(
+        &run(["analyse".as_ref(), out.as_os_str(), "-q".as_ref()]),
+        "analyse",
+    );
+    assert!(out.join("analysis.json").is_file());
+    let base = dir.join("base.obj");
+    let surface = dir.join("surface.obj");
+    std::fs::copy(out.join("input_base.obj"), &base).unwrap();
+    std::fs::copy(out.join("surface.obj"), &surface).unwrap();
+
+    // optimize into the demo's directory: none of the demo's or analyse's files survive, so
+    // `render --color closeness` cannot measure against a surface of another run.
+    let o = "-o".as_ref();
+    let output = quiet_run(&["optimize".as_ref(), base.as_os_str(), o, out.as_os_str()]);
+    assert_success(&output, "optimize into the demo's directory");
+    let structure = [
+        "base.obj",
+        "offset.obj",
+        "report.json",
+        "structure.json",
+        "walls.obj",
+    ];
+    assert_eq!(entries(&out), structure);
+    let picture = dir.join("closeness.svg");
+    let render = run([
+        "render".as_ref(),
+        out.as_os_str(),
+        "--color".as_ref(),
+        "closeness".as_ref(),
+        o,
+        picture.as_os_str(),
+    ]);
+    assert_clean_failure(&render, &["needs the design surface", "surface.obj"], None);
+
+    // pipeline into it: its own files, and nothing else.
+    let output = quiet_run(&[
+        "pipeline".as_ref(),
+        surface.as_os_str(),
+        "--cells".as_ref(),
+        "40".as_ref(),
+        o,
+        out.as_os_str(),
+    ]);
+    assert_success(&output, "pipeline into the same directory");
+    let mut expected = structure.to_vec();
+    expected.extend(["init.json", "initial.obj", "surface.obj"]);
+    expected.sort();
+    assert_eq!(entries(&out), expected);
+    // Nothing left beside it: no staging folder, no earlier directory.
+    assert_eq!(entries(&dir.path), ["base.obj", "out", "surface.obj"]);
+}
+
+#[test]
+fn a_failed_run_leaves_a_good_directory_and_writes_beside_it() {
+    let dir = TempDir::new("a_failed_run_leaves_a_good_directory");
+    let out = dir.join("out");
+    assert_success(&small_demo(&out, &["-q"]), "demo");
+    let base = dir.join("base.obj");
+    std::fs::copy(out.join("input_base.obj"), &base).unwrap();
+    let surface = dir.join("surface.obj");
+    std::fs::copy(out.join("surface.obj"), &surface).unwrap();
+    let good = contents(&out);
+
+    // One iteration of parallel meshes gives no honeycomb.
+    let failing = |out: &Path| {
+        quiet_run(&[
+            "optimize".as_ref(),
+            base.as_os_str(),
+            "--surface".as_ref(),
+            surface.as_os_str(),
+            "--parallel".as_ref(),
+            "--iterations".as_ref(),
+            "1".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ])
+    };
+    let failed = dir.join("out.failed");
+    let line = assert_clean_failure(&failing(&out), &["not a honeycomb"], None);
+    let named = format!("the outputs in {} are for inspection", failed.display());
+    assert!(line.contains(&named), "{line}");
+    assert_eq!(contents(&out), good, "the good directory changed");
+    let report = read_json(&failed, "report.json");
+    assert_eq!(report["honeycomb"], false, "{report}");
+    assert!(failed.join("structure.json").is_file());
+
+    // A passing run takes the good one's place and clears the stale inspection outputs.
+    let output = quiet_run(&[
+        "optimize".as_ref(),
+        base.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert_success(&output, "optimize after a failure");
+    assert_eq!(entries(&dir.path), ["base.obj", "out", "surface.obj"]);
+    assert_eq!(read_json(&out, "report.json")["honeycomb"], true);
+
+    // Without an earlier directory a failure writes DIR.failed only.
+    let fresh = dir.join("fresh");
+    assert_clean_failure(&failing(&fresh), &["fresh.failed"], None);
+    assert!(!fresh.exists() && dir.join("fresh.failed/report.json").is_file());
+}
+
+#[test]
+fn an_output_directory_of_other_files_is_not_replaced() {
+    let dir = TempDir::new("an_output_directory_of_other_files");
+    let base = dir.join("base.obj");
+    write_mesh(&base, &hex_disk(2.0)).expect("write base");
+    let mine = dir.join("mine");
+    std::fs::create_dir(&mine).unwrap();
+    std::fs::write(mine.join("notes.txt"), "keep me\n").unwrap();
+    let output = run([
+        "optimize".as_ref(),
+        base.as_os_str(),
+        "-o".as_ref(),
+        mine.as_os_str(),
+    ]);
+    assert_clean_failure(
+        &output,
+        &["mine", "other files (such as notes.txt)", "new or empty"],
+        None,
+    );
+    assert_eq!(entries(&mine), ["notes.txt"]);
+    assert_eq!(entries(&dir.path), ["base.obj", "mine"]);
 }

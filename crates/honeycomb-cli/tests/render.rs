@@ -107,6 +107,8 @@ fn the_spherical_image_tells_zero_area_cells_from_the_others() {
         rough.to_str().unwrap(),
     ]);
     assert!(!r.status.success());
+    // A result that fails its verdict is written beside DIR, for inspection.
+    let rough = tmp.join("rough.failed");
     for (dir, class) in [(&good, "zero-area"), (&rough, "violation")] {
         let out = dir.join("sphere.svg");
         let r = run([

@@ -37,7 +37,8 @@ fn optimize_shared(name: &str, extra: &[&str]) -> Option<Run> {
         "{name}: {}",
         stderr(&output)
     );
-    let report = std::fs::read_to_string(out.join("report.json"))
+    // A result that is no honeycomb goes beside the output directory, for inspection.
+    let report = std::fs::read_to_string(common::written(&output, &out).join("report.json"))
         .ok()
         .map(|text| parse_json(&text, "report.json"));
     let r = Run {
@@ -100,7 +101,7 @@ fn assert_converged(name: &str, r: &Run) -> serde_json::Value {
 }
 
 /// Either a honeycomb (exit 0) or one clear error line with a complete report saying it is not
-/// one (the outputs stay for inspection).
+/// one (the outputs go to `out.failed` for inspection).
 fn assert_converged_or_clear_failure(name: &str, r: &Run) {
     if r.output.status.success() {
         assert_converged(name, r);

@@ -253,7 +253,8 @@ impl Editor {
     }
 
     /// Writes the current structure, its surface and its measures into `root/name`, which
-    /// appears whole or not at all (a failed save leaves the earlier one as it was).
+    /// appears whole or not at all (a failed save leaves the earlier one as it was), and only
+    /// once it loads as `load` will load it: a save that could not be loaded is no save.
     fn save(&self, session: &EditSession, ws: &Workspace, name: &str) -> Result<PathBuf> {
         let dir = save_dir(&self.save_root, name)?;
         let view = session.view();
@@ -266,7 +267,13 @@ impl Editor {
                 folder,
                 &view.honeycomb,
                 &json!({ "measures": view.measures }),
-            )
+            )?;
+            Source::Structure(folder.to_path_buf())
+                .workspace(None)
+                .map(|_| ())
+                .map_err(|e| {
+                    honeycomb::Error::Parameter(format!("the structure would not load again: {e}"))
+                })
         })?;
         Ok(dir)
     }

@@ -63,6 +63,34 @@ impl ClientMessage {
         serde_json::from_str(text).map_err(|e| format!("malformed message: {e}"))
     }
 
+    /// The message as an error about it names it: its type, and the vertex, stroke or name
+    /// that tell it from others of its type.
+    pub fn label(&self) -> String {
+        let stroke = |s: &Option<u64>| s.map_or(String::new(), |s| format!(", stroke {s}"));
+        match self {
+            ClientMessage::DragVertex {
+                vertex, stroke: s, ..
+            } => {
+                format!("drag_vertex (vertex {vertex}{})", stroke(s))
+            }
+            ClientMessage::Slide {
+                vertex, stroke: s, ..
+            } => {
+                format!("slide (vertex {vertex}{})", stroke(s))
+            }
+            ClientMessage::DragAxis {
+                vertex, stroke: s, ..
+            } => {
+                format!("drag_axis (vertex {vertex}{})", stroke(s))
+            }
+            ClientMessage::Undo {} => "undo".into(),
+            ClientMessage::Redo {} => "redo".into(),
+            ClientMessage::Cancel {} => "cancel".into(),
+            ClientMessage::Save { name } => format!("save {name:?}"),
+            ClientMessage::Load { name } => format!("load {name:?}"),
+        }
+    }
+
     /// The edit and its stroke, for the three editing modes.
     pub fn edit(&self) -> Option<(Edit, Option<u64>)> {
         let v3 = |a: &[f64; 3]| Vec3::new(a[0], a[1], a[2]);
@@ -166,7 +194,7 @@ pub struct UpdateInfo {
 /// The geometry and measures after a step (or an instant edit).
 pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
     let (h, m) = (&view.honeycomb, &view.measures);
-    json!({
+    let state = json!({
         "type": "state",
         "seq": info.seq,
         "stroke": info.stroke,
@@ -192,7 +220,26 @@ pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
             "axis_normal_max_deg": m.axis_normal_deg.max,
             "mean_edge_length": m.mean_edge_length,
         },
-    })
+    });
+    // JSON has no inf or NaN (serde_json writes null): a page would draw nonsense from it.
+    for key in ["base", "offset", "omega", "delta", "measures"] {
+        if has_null(&state[key]) {
+            return error_message(&format!(
+                "the state after this step has a {key} value that is not a finite number; not \
+                 sent (undo the last edit)"
+            ));
+        }
+    }
+    state
+}
+
+fn has_null(value: &Value) -> bool {
+    match value {
+        Value::Null => true,
+        Value::Array(items) => items.iter().any(has_null),
+        Value::Object(fields) => fields.values().any(has_null),
+        _ => false,
+    }
 }
 
 pub fn error_message(message: &str) -> Value {
@@ -202,6 +249,24 @@ pub fn error_message(message: &str) -> Value {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_null_anywhere_in_a_state_is_found() {
+        let finite = json!({"base": [0.0, 1.0], "measures": {"omega_max_deg": 0.5}});
+        assert!(!has_null(&finite["base"]) && !has_null(&finite["measures"]));
+        // serde_json writes a non-finite number as null.
+        let broken = json!({"base": [0.0, f32::INFINITY], "measures": {"delta_max": f64::NAN}});
+        assert!(has_null(&broken["base"]) && has_null(&broken["measures"]));
+    }
+
+    #[test]
+    fn a_label_tells_a_message_from_others_of_its_type() {
+        let m = json!({"type": "drag_axis", "vertex": 7, "direction": [0, 0, 1], "radius": 2, "stroke": 3});
+        let parsed = ClientMessage::parse(&m.to_string()).unwrap();
+        assert_eq!(parsed.label(), "drag_axis (vertex 7, stroke 3)");
+        let save = ClientMessage::parse(r#"{"type": "save", "name": "a"}"#).unwrap();
+        assert_eq!(save.label(), r#"save "a""#);
+    }
 
     /// Every message type reads in its plain form and refuses a field it does not have.
     #[test]

@@ -145,6 +145,7 @@ async fn page(mut socket: WebSocket, state: AppState) {
             incoming = socket.recv() => match incoming {
                 Some(Ok(Message::Text(text))) => match ClientMessage::parse(text.as_str()) {
                     Ok(message) => {
+                        let label = message.label();
                         let from = Page {
                             number: page,
                             reply: reply.clone(),
@@ -152,10 +153,10 @@ async fn page(mut socket: WebSocket, state: AppState) {
                         match state.try_send(Command::Message(message, Instant::now(), from)) {
                             Sent::Queued => continue,
                             Sent::Busy => Arc::from(
-                                error_message(
-                                    "the editor is busy: message dropped (send fewer, or wait \
-                                     for the updates)",
-                                )
+                                error_message(&format!(
+                                    "the editor is busy: message {label} dropped (send fewer, \
+                                     or wait for the updates)"
+                                ))
                                 .to_string(),
                             ),
                             Sent::Gone => return,

@@ -3,7 +3,9 @@
 
 use honeycomb::export::read_structure;
 use honeycomb::generate::{lifted_hex_patch, Shape};
+use honeycomb::init::CellSize;
 use honeycomb::interactive::Workspace;
+use honeycomb::limits::{check_solve_cells, check_solve_vertices};
 use honeycomb::mesh::{read_mesh, PolyMesh};
 use honeycomb::pipeline::{pipeline, PipelineOptions, Walls};
 use honeycomb::{Error, Result};
@@ -58,6 +60,7 @@ impl Source {
     pub fn workspace(&self, thickness: Option<f64>) -> Result<Workspace> {
         match self {
             Source::Demo { shape, vertices } => {
+                check_solve_vertices(&format!("--vertices {vertices}"), *vertices)?;
                 let (base, surface) = lifted_hex_patch(*shape, *vertices);
                 Workspace::new(&base, Some(&surface), thickness)
             }
@@ -68,6 +71,7 @@ impl Source {
             }
             Source::Surface { path, cells, walls } => {
                 let surface = read_mesh(path)?.mesh;
+                check_solve_cells(CellSize::Cells(*cells), &surface)?;
                 // As `honeycomb pipeline` makes it, so that editing starts from a honeycomb.
                 let mut options = PipelineOptions::new(*cells);
                 options.walls = *walls;

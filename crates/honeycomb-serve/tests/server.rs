@@ -360,7 +360,20 @@ fn a_flood_of_messages_is_turned_away_not_queued() {
             .as_str()
             .is_some_and(|t| t.contains("the editor is busy"))
     };
-    while !busy(&a.receive().unwrap()) {}
+    let reply = loop {
+        let m = a.receive().unwrap();
+        if busy(&m) {
+            break m;
+        }
+    };
+    // It says which message it dropped.
+    assert!(
+        reply["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("the editor is busy: message undo dropped"),
+        "{reply}"
+    );
     // Another page still gets in, and the editor still edits.
     let (mut c, _, first) = connect(&server);
     c.send(&json!({"type": "slide", "vertex": 3, "distance": 0.1, "stroke": 1}))
@@ -368,4 +381,40 @@ fn a_flood_of_messages_is_turned_away_not_queued() {
     c.until("state", |s| s["base"][11] != first["base"][11])
         .unwrap();
     server.stop();
+}
+
+#[test]
+fn parameters_beyond_the_bounds_are_refused_before_serving() {
+    let demo = |vertices| Source::Demo {
+        shape: Shape::Dome,
+        vertices,
+    };
+    // With 1e308 every offset coordinate was sent as null, and saves could not be loaded.
+    for (thickness, shown) in [(1e308, "1e308"), (1e30, "1e30")] {
+        let options = ServeOptions {
+            port: 0,
+            thickness: Some(thickness),
+            ..ServeOptions::default()
+        };
+        let Err(e) = start(&demo(400), options) else {
+            panic!("thickness {shown} was accepted");
+        };
+        let e = e.to_string();
+        assert!(
+            e.contains(&format!("thickness {shown}: more than 1000 times")),
+            "{e}"
+        );
+    }
+    let options = ServeOptions {
+        port: 0,
+        ..ServeOptions::default()
+    };
+    let Err(e) = start(&demo(5_000_000), options) else {
+        panic!("5000000 vertices were accepted");
+    };
+    assert!(
+        e.to_string()
+            .contains("--vertices 5000000: a solve of about"),
+        "{e}"
+    );
 }

@@ -59,12 +59,17 @@ pub fn rounded(x: f64, digits: usize) -> String {
 
 /// A direction as a message shows it: `0,0,1`, each coordinate to 4 significant digits.
 pub fn short_vector(v: crate::Vec3) -> String {
-    format!(
-        "{},{},{}",
-        rounded(v.x, 4),
-        rounded(v.y, 4),
-        rounded(v.z, 4)
-    )
+    coordinates(v, 4, ",")
+}
+
+/// A point as a message shows it: `(0.5, 1e-300, NaN)`, each coordinate to 6 significant
+/// digits.
+pub fn short_point(p: crate::Vec3) -> String {
+    format!("({})", coordinates(p, 6, ", "))
+}
+
+fn coordinates(v: crate::Vec3, digits: usize, separator: &str) -> String {
+    v.to_array().map(|c| rounded(c, digits)).join(separator)
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@ pub mod generate;
 pub mod geometry;
 pub mod init;
 pub mod interactive;
+pub mod limits;
 pub mod mesh;
 pub mod optimize;
 pub mod parallel;

@@ -3,7 +3,7 @@
 //! mostly hexagonal cells whose node axes follow S's normals far better than parallel axes;
 //! surfaces no lattice of one cell size suits are remeshed or refused at once.
 
-use honeycomb::generate::{design_surface, HeightField, Shape};
+use honeycomb::generate::{design_surface, Shape};
 use honeycomb::geometry::Vec3;
 use honeycomb::init::{init, CellSize, Flattener, InitOptions, Method};
 use honeycomb::mesh::{Connectivity, PolyMesh};

@@ -51,6 +51,62 @@ where
         .expect("run the honeycomb binary")
 }
 
+/// Address space a bounded run may take: ten times what the small inputs of the tests need,
+/// well below the machine, so that a regression to an unbounded allocation aborts the run
+/// (and fails its test) instead of eating the machine.
+pub const ADDRESS_SPACE_LIMIT_KIB: u64 = 2 << 20;
+
+/// Runs the `honeycomb` binary with `args` under [`ADDRESS_SPACE_LIMIT_KIB`] (`ulimit -v`),
+/// killing it if it has not ended within `seconds`: the test then fails as a hang.
+pub fn run_bounded<I, S>(args: I, seconds: u64) -> Output
+where
+    I: IntoIterator<Item = S>,
+    S: AsRef<OsStr>,
+{
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(format!(
+            "ulimit -v {ADDRESS_SPACE_LIMIT_KIB} && exec \"$0\" \"$@\""
+        ))
+        .arg(env!("CARGO_BIN_EXE_honeycomb"))
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run the honeycomb binary under sh");
+    // Read both streams while waiting, so that a full pipe cannot stall the child.
+    fn drain(mut stream: impl std::io::Read + Send + 'static) -> std::thread::JoinHandle<Vec<u8>> {
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            let _ = stream.read_to_end(&mut bytes);
+            bytes
+        })
+    }
+    let streams = [
+        drain(child.stdout.take().expect("piped")),
+        drain(child.stderr.take().expect("piped")),
+    ];
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(seconds);
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("wait for the binary") {
+            break status;
+        }
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("still running after {seconds} s: a hang");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let [stdout, stderr] = streams.map(|t| t.join().expect("read a stream"));
+    Output {
+        status,
+        stdout,
+        stderr,
+    }
+}
+
 pub fn stdout(output: &Output) -> String {
     String::from_utf8_lossy(&output.stdout).into_owned()
 }
@@ -128,6 +184,17 @@ pub fn assert_clean_failure(output: &Output, keywords: &[&str], out_dir: Option<
         );
     }
     line.to_string()
+}
+
+/// Where a run asked for `-o out` put its outputs: `out`, or `out.failed` when the result
+/// failed its verdict (no honeycomb).
+pub fn written(output: &Output, out: &Path) -> PathBuf {
+    if output.status.success() {
+        return out.to_path_buf();
+    }
+    let mut failed = out.as_os_str().to_os_string();
+    failed.push(".failed");
+    PathBuf::from(failed)
 }
 
 /// The `../shared/data` directory next to the workspace, if present.

@@ -97,16 +97,7 @@ mod tests {
     /// distance across it, to the boundary.
     #[test]
     fn beyond_the_boundary_the_second_row_pulls_back() {
-        let square = PolyMesh::new(
-            vec![
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(1.0, 1.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
-            ],
-            vec![vec![0, 1, 2, 3]],
-        );
-        let surface = Surface::from_mesh(&square).unwrap();
+        let surface = Surface::from_mesh(&PolyMesh::unit_square()).unwrap();
         let layout = Layout::new(2, 0);
         let mut c = Closeness::new(layout, &surface, 1.0);
         let points = [Vec3::new(0.5, 0.4, 0.1), Vec3::new(1.2, 0.5, 0.1)];

@@ -4,6 +4,7 @@
 
 use crate::error::{short_number, Error, Result};
 use crate::geometry::Vec3;
+use crate::mesh::io::read_file;
 use crate::mesh::{validate_base_mesh, Outputs};
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::optimize::MAX_LENGTH;
@@ -68,11 +69,9 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
         line,
         message,
     };
-    let text = std::fs::read_to_string(&path).map_err(|source| Error::Io {
-        path: path.clone(),
-        source,
-    })?;
-    let s: StructureJson = serde_json::from_str(&text)
+    let bytes = read_file(&path)?;
+    let text = std::str::from_utf8(&bytes).map_err(|_| bad(0, "not UTF-8 text".into()))?;
+    let s: StructureJson = serde_json::from_str(text)
         .map_err(|e| bad(e.line(), format!("not a structure.json: {e}")))?;
     let nv = s.vertices.len();
     if s.node_axes.len() != nv || s.offset_vertices.len() != nv {

@@ -4,6 +4,7 @@
 
 use super::Vec3;
 use crate::error::{Error, Result};
+use crate::mesh::io::{read_file, text_lines};
 use std::path::Path;
 
 /// Every vector of the file with its 1-based line number. A line without exactly three numbers
@@ -14,10 +15,7 @@ pub fn read_vectors(path: &Path) -> Result<Vec<(usize, Vec3)>> {
         line,
         message,
     };
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = read_file(path)?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         let line = 1 + bytes[..e.valid_up_to()]
             .iter()
@@ -26,7 +24,7 @@ pub fn read_vectors(path: &Path) -> Result<Vec<(usize, Vec3)>> {
         bad(line, "not UTF-8 text".to_string())
     })?;
     let mut vectors = Vec::new();
-    for (index, raw) in text.lines().enumerate() {
+    for (index, raw) in text_lines(text).enumerate() {
         let line = index + 1;
         let content = raw.split('#').next().unwrap_or("");
         let words: Vec<&str> = content

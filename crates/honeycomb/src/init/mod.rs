@@ -23,7 +23,7 @@ pub use flatten::{flatten, flatten_viewed, Distortion, Flattener, Flattening, Po
 pub use lattice::{Corner, Lattice};
 pub use strokes::{read_strokes, sixfold_mean};
 
-use crate::error::{Error, Result};
+use crate::error::{rounded, short_number, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::surface::Surface;
@@ -196,12 +196,66 @@ impl InitOptions {
             CellSize::Cells(n) if n == 0 || n > MAX_CELLS => Err(Error::Parameter(format!(
                 "--cells {n}: expected 1 to {MAX_CELLS}"
             ))),
-            CellSize::EdgeLength(l) if !l.is_finite() || l <= 0.0 => Err(Error::Parameter(
-                format!("--edge-length {l}: expected a positive length in model units"),
-            )),
+            CellSize::EdgeLength(l) if !l.is_finite() || l <= 0.0 => {
+                Err(Error::Parameter(format!(
+                    "--edge-length {}: expected a positive length in model units",
+                    short_number(l)
+                )))
+            }
             _ => Ok(()),
         }
     }
+}
+
+/// The edge lengths that make at most [`MAX_CELLS`] cells of `surface`'s area and at least one
+/// no larger than its extent (the diagonal of its bounding box).
+pub fn edge_length_range(surface: &PolyMesh) -> (f64, f64) {
+    let first = surface.vertices.first().copied().unwrap_or(Vec3::ZERO);
+    let (lo, hi) = surface
+        .vertices
+        .iter()
+        .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let shortest = (surface.area() / (MAX_CELLS as f64 * hexagon_area(1.0))).sqrt();
+    (shortest, (hi - lo).norm())
+}
+
+/// An edge length outside [`edge_length_range`] is refused before any lattice is laid: a
+/// longer one fits no cell and overflows the lattice's extent, a shorter one is a memory bomb.
+pub(crate) fn check_edge_length(surface: &PolyMesh, size: CellSize) -> Result<()> {
+    let CellSize::EdgeLength(l) = size else {
+        return Ok(());
+    };
+    let (shortest, longest) = edge_length_range(surface);
+    let range = format!(
+        "{} to {} model units",
+        rounded(shortest, 6),
+        rounded(longest, 6)
+    );
+    if l > longest {
+        // About the surface as much as the option: the front names the file.
+        return Err(Error::Mesh(format!(
+            "--edge-length {}: no cell of that size fits on the surface (the diagonal of its \
+             bounding box is {}): choose smaller cells, {range}",
+            rounded(l, 6),
+            rounded(longest, 6)
+        )));
+    }
+    if l < shortest {
+        let area = surface.area();
+        let cells = area / hexagon_area(1.0) / l / l;
+        let cells = if cells < 1e9 {
+            format!("{cells:.0}")
+        } else {
+            rounded(cells, 3)
+        };
+        return Err(Error::Parameter(format!(
+            "--edge-length {}: about {cells} cells on a surface of area {}; expected at most \
+             {MAX_CELLS}: choose larger cells, {range}",
+            rounded(l, 6),
+            rounded(area, 6)
+        )));
+    }
+    Ok(())
 }
 
 /// Cells within this share of the count asked for are taken as they come; beyond it the
@@ -229,6 +283,7 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
             "the surface has {components} separate pieces; init needs one (split the file)"
         )));
     }
+    check_edge_length(surface, options.size)?;
     let mut made = match options.method {
         Method::Field => counted(options, |o| init_field(surface, o, start))?,
         Method::Flatten => {
@@ -321,8 +376,9 @@ fn lay_lattice(
     let fits = area / hexagon_area(edge);
     if fits > MAX_CELLS as f64 {
         return Err(Error::Parameter(format!(
-            "--edge-length {edge}: about {fits:.0} cells on a surface of area {area:.4}; \
-             expected at most {MAX_CELLS}"
+            "--edge-length {}: about {fits:.0} cells on a surface of area {area:.4}; \
+             expected at most {MAX_CELLS}",
+            rounded(edge, 6)
         )));
     }
     let angle = lattice_angle(options, vertices, triangles, &flat.points)?;
@@ -335,7 +391,8 @@ fn lay_lattice(
     // far more cells there than the surface holds.
     let (lo, hi) = bounds(&flat.points);
     let covering = (hi[0] - lo[0] + 4.0 * edge) * (hi[1] - lo[1] + 4.0 * edge) / hexagon_area(edge);
-    if covering > 10.0 * MAX_CELLS as f64 {
+    // A NaN comes from an extent that overflows.
+    if covering.is_nan() || covering > 10.0 * MAX_CELLS as f64 {
         return Err(Error::Mesh(format!(
             "the flattened surface spreads over about {covering:.0} cells of its bounding box \
              for {fits:.0} on the surface: too thin for a grid of this size"

@@ -3,22 +3,21 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
+use crate::mesh::io::{read_file, text_lines};
 use std::path::Path;
 
 /// The polylines of an OBJ file's `l` records (1-based or negative indices into its `v`).
 pub fn read_strokes(path: &Path) -> Result<Vec<Vec<Vec3>>> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
     let bad = |line: usize, message: String| Error::Parse {
         path: path.to_path_buf(),
         line,
         message,
     };
+    let bytes = read_file(path)?;
+    let text = std::str::from_utf8(&bytes).map_err(|_| bad(0, "not UTF-8 text".into()))?;
     let mut vertices = Vec::new();
     let mut lines = Vec::new();
-    for (number, line) in text.lines().enumerate().map(|(i, l)| (i + 1, l)) {
+    for (number, line) in text_lines(text).enumerate().map(|(i, l)| (i + 1, l)) {
         let mut words = line.split_whitespace();
         match words.next() {
             Some("v") => {

@@ -56,6 +56,13 @@ impl Workspace {
         let frame = Frame::of(base);
         let thickness = thickness.unwrap_or(0.3 * frame.unit);
         check_thickness(thickness)?;
+        // As optimize bounds it: deeper, every wall's measures are noise and M' overflows.
+        crate::optimize::check_scale(
+            "thickness",
+            thickness,
+            crate::optimize::MAX_LENGTH,
+            base.mean_edge_length(),
+        )?;
         let surface_mesh = surface.unwrap_or(base);
         // S in model units (for the measures) and in the solver's frame, one on each thread.
         let (model_surface, surface) = crate::parallel::both(
@@ -407,7 +414,8 @@ impl<'a> EditSession<'a> {
                 finite("distance", distance.is_finite())?;
                 if distance.abs() > 10.0 * self.ws.frame.unit {
                     return Err(Error::Parameter(format!(
-                        "slide by {distance}: more than 10 edge lengths at once"
+                        "slide by {}: more than 10 edge lengths at once",
+                        crate::error::rounded(distance, 6)
                     )));
                 }
                 Ok(())

@@ -8,6 +8,9 @@ mod validate;
 
 pub use connectivity::Connectivity;
 pub use convexity::nonconvex_faces;
-pub use io::{read_mesh, replace_folder, write_atomically, write_mesh, LoadedMesh, Outputs};
+pub use io::{
+    read_mesh, replace_folder, write_atomically, write_mesh, write_output_dir, LoadedMesh,
+    OutputDir, Outputs, Previous, Verdict,
+};
 pub use polymesh::PolyMesh;
-pub use validate::{validate_base_mesh, validate_surface_mesh};
+pub use validate::{check_base_near_surface, validate_base_mesh, validate_surface_mesh};

@@ -2,7 +2,7 @@
 //! where, and, when there is an obvious one, how to fix it.
 
 use super::{Connectivity, PolyMesh};
-use crate::error::{short_number, Error, Result};
+use crate::error::{rounded, short_number, short_point as point, Error, Result};
 
 /// How many offending vertices a message lists before summarising the rest.
 const LISTED: usize = 5;
@@ -10,6 +10,10 @@ const LISTED: usize = 5;
 /// Model coordinates beyond this are refused: squared lengths of such meshes overflow or keep
 /// no digits for a cell's size (a 10 km site in micrometres is 1e10).
 pub const MAX_COORDINATE: f64 = 1e12;
+
+/// A mesh smaller than this across is refused, as one beyond [`MAX_COORDINATE`] is: its
+/// squared lengths and areas fall below what a float holds (a 1 mm part in kilometres is 1e-6).
+pub const MIN_EXTENT: f64 = 1e-6;
 
 /// A face whose corners span less than this share of its longest edge squared has no area
 /// (its corners lie on one line): its normal and any map of it are undefined.
@@ -32,8 +36,8 @@ pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
         .find(|(_, p)| !p.is_finite())
     {
         return Err(Error::Mesh(format!(
-            "vertex {v} has a non-finite coordinate: ({}, {}, {})",
-            p.x, p.y, p.z
+            "vertex {v} has a non-finite coordinate: {}",
+            point(*p)
         )));
     }
     if let Some((v, p)) = mesh
@@ -48,6 +52,15 @@ pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
             short_number(p.x),
             short_number(p.y),
             short_number(p.z)
+        )));
+    }
+    // At 0 every vertex coincides, which the edge check names.
+    let extent = extent(mesh);
+    if extent > 0.0 && extent < MIN_EXTENT {
+        return Err(Error::Mesh(format!(
+            "the mesh spans only {} model units (its bounding box's longest side); expected at \
+             least {MIN_EXTENT:e}: rescale the mesh",
+            rounded(extent, 6)
         )));
     }
     let conn = Connectivity::build(mesh)?;
@@ -106,13 +119,58 @@ fn check_edge_lengths(mesh: &PolyMesh, conn: &Connectivity) -> Result<()> {
         let (pa, pb) = (mesh.vertices[a], mesh.vertices[b]);
         if (pa - pb).norm() <= tolerance {
             return Err(Error::Mesh(format!(
-                "zero-length edge {a}-{b}: vertex {a} at ({}, {}, {}) and vertex {b} at \
-                 ({}, {}, {}) coincide; merge them",
-                pa.x, pa.y, pa.z, pb.x, pb.y, pb.z
+                "zero-length edge {a}-{b}: vertex {a} at {} and vertex {b} at {} coincide; \
+                 merge them",
+                point(pa),
+                point(pb)
             )));
         }
     }
     Ok(())
+}
+
+/// A base mesh whose bounding box lies farther than this many of its mean edge lengths from
+/// the design surface's is on another surface (or in other units): closeness cannot pull it
+/// there in a solve.
+pub const MAX_SURFACE_GAP: f64 = 10.0;
+
+/// Refuses a base mesh that lies far from its design surface (their bounding boxes more than
+/// [`MAX_SURFACE_GAP`] mean edge lengths apart), before a solve that could only fail.
+pub fn check_base_near_surface(base: &PolyMesh, surface: &PolyMesh) -> Result<()> {
+    let (Some(a), Some(b)) = (bounds(base), bounds(surface)) else {
+        return Ok(());
+    };
+    let gap = (0..3)
+        .map(|k| (a.0[k] - b.1[k]).max(b.0[k] - a.1[k]).max(0.0))
+        .fold(0.0f64, f64::hypot);
+    let edge = base.mean_edge_length();
+    if gap > MAX_SURFACE_GAP * edge {
+        return Err(Error::Mesh(format!(
+            "the base mesh lies {} model units ({} of its mean edge lengths) from the surface \
+             (between their bounding boxes); expected it on the surface, within {MAX_SURFACE_GAP} \
+             edge lengths: are they in the same place and units?",
+            rounded(gap, 6),
+            rounded(gap / edge, 6)
+        )));
+    }
+    Ok(())
+}
+
+/// The corners of the mesh's bounding box as arrays, `None` without vertices.
+fn bounds(mesh: &PolyMesh) -> Option<([f64; 3], [f64; 3])> {
+    let first = *mesh.vertices.first()?;
+    let (lo, hi) = mesh
+        .vertices
+        .iter()
+        .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    Some((lo.to_array(), hi.to_array()))
+}
+
+/// The longest side of the mesh's bounding box (no squares, which underflow on tiny meshes).
+fn extent(mesh: &PolyMesh) -> f64 {
+    bounds(mesh).map_or(0.0, |(lo, hi)| {
+        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
+    })
 }
 
 /// A face whose corners all lie on one line: every corner's two edges are parallel.
@@ -148,7 +206,7 @@ fn describe(mesh: &PolyMesh, conn: &Connectivity, vertices: &[usize], valence: b
             } else {
                 String::new()
             };
-            format!("vertex {v}{valence} at ({}, {}, {})", p.x, p.y, p.z)
+            format!("vertex {v}{valence} at {}", point(p))
         })
         .collect();
     if vertices.len() > LISTED {
@@ -211,6 +269,56 @@ mod tests {
         assert_eq!(conn.num_edges(), 11);
         assert_eq!(conn.valence(1), 3);
         validate_surface_mesh(&hexagon_pair()).unwrap();
+    }
+
+    #[test]
+    fn a_mesh_below_the_smallest_scale_is_refused_with_short_numbers() {
+        for scale in [1e-100, 1e-300, 1e-7] {
+            let mut mesh = hexagon_pair();
+            mesh.vertices.iter_mut().for_each(|p| *p = *p * scale);
+            let message = error(validate_surface_mesh(&mesh));
+            let spans = format!(
+                "the mesh spans only {} model units",
+                rounded(2.0 * 3f64.sqrt() * scale, 6)
+            );
+            assert!(message.starts_with(&spans), "{message}");
+            assert!(message.contains("at least 1e-6: rescale"), "{message}");
+        }
+        // Just above the bound, the mesh is taken as it is.
+        let mut mesh = hexagon_pair();
+        mesh.vertices.iter_mut().for_each(|p| *p = *p * 1e-6);
+        validate_base_mesh(&mesh).unwrap();
+    }
+
+    #[test]
+    fn a_base_mesh_far_from_its_surface_is_refused() {
+        let surface = hexagon_pair();
+        let mut base = hexagon_pair();
+        base.vertices.iter_mut().for_each(|p| p.z += 1e6);
+        let message = check_base_near_surface(&base, &surface)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            message.contains(
+                "the base mesh lies 1000000 model units (1000000 of its mean edge lengths)"
+            ),
+            "{message}"
+        );
+        // Beside it by a few edge lengths (a base beyond S's edge), or on it: taken.
+        base.vertices.iter_mut().for_each(|p| p.z -= 1e6 - 5.0);
+        check_base_near_surface(&base, &surface).unwrap();
+        check_base_near_surface(&surface, &surface).unwrap();
+    }
+
+    #[test]
+    fn coordinates_in_messages_have_at_most_six_digits() {
+        let mut mesh = hexagon_pair();
+        mesh.vertices[8] = mesh.vertices[7];
+        let message = error(validate_surface_mesh(&mesh));
+        assert!(
+            message.contains("vertex 7 at (2.59808, 0.5, 0) and vertex 8 at (2.59808, 0.5, 0)"),
+            "{message}"
+        );
     }
 
     #[test]

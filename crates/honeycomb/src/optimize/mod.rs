@@ -29,7 +29,7 @@ use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
     PrescribedAxes,
 };
-use crate::error::{short_number, Error, Result};
+use crate::error::{rounded, short_number, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::solve::{Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolverOptions};
@@ -91,7 +91,8 @@ impl WallNormals {
 pub fn check_thickness(t: f64) -> Result<()> {
     if !t.is_finite() || t <= 0.0 {
         return Err(Error::Parameter(format!(
-            "thickness {t}: expected a positive length in model units"
+            "thickness {}: expected a positive length in model units",
+            rounded(t, 6)
         )));
     }
     Ok(())
@@ -105,7 +106,7 @@ pub(crate) const MAX_LENGTH: f64 = 1e3;
 const MAX_MIN_EDGE: f64 = 10.0;
 
 /// Refuses a length parameter more than `ratio` mean edge lengths `edge` of the base mesh.
-fn check_scale(label: &str, length: f64, ratio: f64, edge: f64) -> Result<()> {
+pub(crate) fn check_scale(label: &str, length: f64, ratio: f64, edge: f64) -> Result<()> {
     if length > ratio * edge {
         return Err(Error::Parameter(format!(
             "{label} {}: more than {ratio} times the base mesh's mean edge length \
@@ -175,6 +176,7 @@ impl OptimizeOptions {
     /// Checks the options against the (valid) base mesh they are for.
     pub fn validate(&self, base: &PolyMesh) -> Result<()> {
         self.weights.validate()?;
+        crate::limits::check_solve(base, self.solver.max_iterations)?;
         let edge = base.mean_edge_length();
         if let Some(t) = self.thickness {
             check_thickness(t)?;
@@ -183,7 +185,8 @@ impl OptimizeOptions {
         if let Some(length) = self.min_edge {
             if !length.is_finite() || length <= 0.0 {
                 return Err(Error::Parameter(format!(
-                    "minimum edge length {length}: expected a positive length"
+                    "minimum edge length {}: expected a positive length",
+                    rounded(length, 6)
                 )));
             }
             check_scale("minimum edge length", length, MAX_MIN_EDGE, edge)?;

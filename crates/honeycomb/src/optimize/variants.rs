@@ -38,7 +38,8 @@ impl ParallelOptions {
         if let Some(c) = self.depth {
             if !c.is_finite() || c <= 0.0 {
                 return Err(Error::Parameter(format!(
-                    "{depth} {c}: expected a positive length in model units"
+                    "{depth} {}: expected a positive length in model units",
+                    crate::error::rounded(c, 6)
                 )));
             }
         }
@@ -117,8 +118,8 @@ pub fn shading_axes(surface: &Surface, vertices: &[Vec3], light: Vec3) -> Result
 pub fn unit_light(light: Vec3) -> Result<Vec3> {
     if !light.is_finite() || light.norm() < 1e-12 {
         return Err(Error::Parameter(format!(
-            "light direction ({}, {}, {}): expected a non-zero finite vector",
-            light.x, light.y, light.z
+            "light direction {}: expected a non-zero finite vector",
+            crate::error::short_point(light)
         )));
     }
     Ok(light.normalized())
@@ -128,7 +129,8 @@ pub(crate) fn check_weight(label: &str, w: f64, may_be_zero: bool) -> Result<()>
     if !w.is_finite() || !(0.0..=1e6).contains(&w) || (!may_be_zero && w == 0.0) {
         let range = if may_be_zero { "from 0" } else { "above 0" };
         return Err(Error::Parameter(format!(
-            "{label} {w}: expected a weight {range} up to 1e6"
+            "{label} {}: expected a weight {range} up to 1e6",
+            crate::error::rounded(w, 6)
         )));
     }
     Ok(())

@@ -73,7 +73,8 @@ impl Weights {
             if !w.is_finite() || !(0.0..=1e6).contains(&w) || (required && w == 0.0) {
                 let range = if required { "above 0" } else { "from 0" };
                 return Err(Error::Parameter(format!(
-                    "{label} {w}: expected a weight {range} up to 1e6"
+                    "{label} {}: expected a weight {range} up to 1e6",
+                    crate::error::rounded(w, 6)
                 )));
             }
         }

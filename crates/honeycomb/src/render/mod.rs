@@ -13,3 +13,19 @@ pub use scene::{Scene, Shape};
 pub use spherical::spherical_scene;
 pub use svg::{walls_scene, Coloring};
 pub use view::View;
+
+/// The narrowest picture that holds the colour bar and the widest one drawn: a PNG is held in
+/// memory about four times over at 3 bytes a pixel (0.8 GB at 8000 pixels square).
+pub const WIDTHS: std::ops::RangeInclusive<u32> = 200..=8000;
+
+/// Refuses a picture width outside [`WIDTHS`], before anything is drawn.
+pub fn check_width(width: u32) -> crate::Result<()> {
+    if !WIDTHS.contains(&width) {
+        return Err(crate::Error::Parameter(format!(
+            "--width {width}: expected {} to {} pixels",
+            WIDTHS.start(),
+            WIDTHS.end()
+        )));
+    }
+    Ok(())
+}

@@ -55,7 +55,8 @@ pub fn field_hex_mesh(
 ) -> Result<PolyMesh> {
     if !edge.is_finite() || edge <= 0.0 {
         return Err(Error::Parameter(format!(
-            "edge length {edge}: expected a positive length in model units"
+            "edge length {}: expected a positive length in model units",
+            crate::error::rounded(edge, 6)
         )));
     }
     if let Some((k, _)) = strokes
@@ -73,8 +74,9 @@ pub fn field_hex_mesh(
     let cells = area / super::hexagon_area(edge);
     if cells > super::MAX_CELLS as f64 {
         return Err(Error::Parameter(format!(
-            "edge length {edge}: about {cells:.0} cells on a surface of area {area:.4}; \
+            "edge length {}: about {cells:.0} cells on a surface of area {area:.4}; \
              expected at most {}",
+            crate::error::rounded(edge, 6),
             super::MAX_CELLS
         )));
     }

@@ -111,38 +111,224 @@ impl Outputs {
 /// `dir`, which is then renamed to `dir` (an old `dir` is moved aside first and removed after).
 /// If `fill` or a rename fails, the hidden folder is removed and an old `dir` stays as it was.
 pub fn replace_folder(dir: &Path, fill: impl FnOnce(&Path) -> Result<()>) -> Result<()> {
-    let io = |path: &Path, source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let (Some(parent), Some(name)) = (dir.parent(), dir.file_name()) else {
-        return Err(Error::Parameter(format!(
-            "cannot write the folder {}: not a folder name",
-            dir.display()
-        )));
-    };
-    let (temp, old) = (
-        parent.join(hidden(name, "saving")),
-        parent.join(hidden(name, "old")),
-    );
-    std::fs::create_dir_all(&temp).map_err(|e| io(&temp, e))?;
-    let swapped = fill(&temp).and_then(|()| {
-        if !dir.exists() {
-            return std::fs::rename(&temp, dir).map_err(|e| io(dir, e));
-        }
-        std::fs::rename(dir, &old).map_err(|e| io(dir, e))?;
-        std::fs::rename(&temp, dir).map_err(|e| {
-            // Best effort: put the old folder back; the rename's error is the one to report.
-            let _ = std::fs::rename(&old, dir);
-            io(dir, e)
-        })?;
-        let _ = std::fs::remove_dir_all(&old);
-        Ok(())
-    });
+    let (parent, name) = parent_and_name(dir)?;
+    let temp = parent.join(hidden(name, "saving"));
+    std::fs::create_dir_all(&temp).map_err(|e| io_error(&temp, e))?;
+    let swapped = fill(&temp).and_then(|()| put_in_place(&temp, dir, Previous::Remove));
     if swapped.is_err() {
         let _ = std::fs::remove_dir_all(&temp);
     }
     swapped
+}
+
+fn io_error(path: &Path, source: std::io::Error) -> Error {
+    Error::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// The folder `dir` lies in and its own name; `.`, `..` and `/` name no folder to replace.
+fn parent_and_name(dir: &Path) -> Result<(&Path, &std::ffi::OsStr)> {
+    match (dir.parent(), dir.file_name()) {
+        (Some(parent), Some(name)) => Ok((parent, name)),
+        _ => Err(Error::Parameter(format!(
+            "cannot write the folder {}: not a folder name (name the folder itself, e.g. out)",
+            dir.display()
+        ))),
+    }
+}
+
+/// Renames the filled folder `staged` to `target`. An old `target` is moved aside first and,
+/// once the new one is in place, removed or kept as `TARGET.previous`; if the second rename
+/// fails, the old one is put back.
+fn put_in_place(staged: &Path, target: &Path, previous: Previous) -> Result<()> {
+    if std::fs::symlink_metadata(target).is_err() {
+        return std::fs::rename(staged, target).map_err(|e| io_error(target, e));
+    }
+    let (parent, name) = parent_and_name(target)?;
+    let aside = match previous {
+        Previous::Keep => {
+            let kept = sibling(target, "previous");
+            if kept.is_dir() {
+                std::fs::remove_dir_all(&kept).map_err(|e| io_error(&kept, e))?;
+            }
+            kept
+        }
+        Previous::Remove => parent.join(hidden(name, "old")),
+    };
+    std::fs::rename(target, &aside).map_err(|e| io_error(target, e))?;
+    std::fs::rename(staged, target).map_err(|e| {
+        // Best effort: put the old folder back; the rename's error is the one to report.
+        let _ = std::fs::rename(&aside, target);
+        io_error(target, e)
+    })?;
+    if previous == Previous::Remove {
+        let _ = std::fs::remove_dir_all(&aside);
+    }
+    Ok(())
+}
+
+/// `DIR.suffix` beside `DIR`.
+fn sibling(dir: &Path, suffix: &str) -> PathBuf {
+    let mut name = dir.file_name().unwrap_or_default().to_os_string();
+    name.push(".");
+    name.push(suffix);
+    dir.with_file_name(name)
+}
+
+/// Whether a run's outputs are the result asked for, or only for inspection.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// The result: the outputs take `DIR`'s place.
+    Passed,
+    /// Not the result asked for (no honeycomb, say): the outputs go to `DIR.failed`, and a
+    /// good `DIR` of an earlier run stays as it was.
+    Failed,
+}
+
+/// What becomes of the `DIR` of an earlier run once a passed run's outputs take its place.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Previous {
+    /// Removed (after the new one is in place).
+    #[default]
+    Remove,
+    /// Kept as `DIR.previous` (an older `DIR.previous` removed).
+    Keep,
+}
+
+/// Files that mark a folder as an output directory of an earlier run, which a new run may
+/// replace; a folder that holds other files and none of these is someone else's.
+const OUTPUT_MARKERS: [&str; 2] = ["report.json", "structure.json"];
+
+/// An output directory written as a whole: the files go into a hidden staging folder beside
+/// `DIR`, which takes `DIR`'s place only once every file is complete, so no file of an earlier
+/// run survives into a new one and a failure part way leaves `DIR` as it was.
+///
+/// ```no_run
+/// # use honeycomb::mesh::{OutputDir, Verdict};
+/// # fn main() -> honeycomb::Result<()> {
+/// // Before a long run, so that an unusable DIR fails at once:
+/// let out = OutputDir::begin(std::path::Path::new("out"))?;
+/// // ... the run ...
+/// let written = out.finish(Verdict::Passed, |staging| {
+///     honeycomb::export::write_json(&staging.join("report.json"), &"...")
+/// })?;
+/// assert_eq!(written, std::path::Path::new("out"));
+/// # Ok(()) }
+/// ```
+#[derive(Debug)]
+pub struct OutputDir {
+    dir: PathBuf,
+    staging: PathBuf,
+    previous: Previous,
+}
+
+impl OutputDir {
+    /// Checks `dir` (a folder name; absent, empty or an output directory of an earlier run)
+    /// and makes the staging folder beside it (and `dir`'s parents), so that a `dir` that
+    /// cannot be written fails before a long run rather than after it.
+    pub fn begin(dir: &Path) -> Result<OutputDir> {
+        let (parent, name) = parent_and_name(dir)?;
+        check_replaceable(dir)?;
+        let staging = parent.join(hidden(name, "staging"));
+        std::fs::create_dir_all(&staging).map_err(|e| io_error(dir, e))?;
+        Ok(OutputDir {
+            dir: dir.to_path_buf(),
+            staging,
+            previous: Previous::Remove,
+        })
+    }
+
+    /// Sets what becomes of an earlier run's `DIR` (removed by default).
+    pub fn previous(mut self, previous: Previous) -> OutputDir {
+        self.previous = previous;
+        self
+    }
+
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// `DIR.failed`, where the outputs of a failed verdict go.
+    pub fn failed_dir(&self) -> PathBuf {
+        sibling(&self.dir, "failed")
+    }
+
+    /// Runs `fill` on the staging folder, then puts it in place by `verdict`: as `DIR` (and a
+    /// `DIR.failed` of an earlier run is removed) or as `DIR.failed` (and `DIR` stays as it
+    /// was). Returns where the outputs are. If `fill` or a rename fails, nothing changes.
+    pub fn finish(
+        self,
+        verdict: Verdict,
+        fill: impl FnOnce(&Path) -> Result<()>,
+    ) -> Result<PathBuf> {
+        fill(&self.staging)?;
+        match verdict {
+            Verdict::Passed => {
+                put_in_place(&self.staging, &self.dir, self.previous)?;
+                let failed = self.failed_dir();
+                if failed.is_dir() {
+                    // Stale: it was about an earlier run.
+                    let _ = std::fs::remove_dir_all(&failed);
+                }
+                Ok(self.dir.clone())
+            }
+            Verdict::Failed => {
+                let failed = self.failed_dir();
+                check_replaceable(&failed)?;
+                put_in_place(&self.staging, &failed, Previous::Remove)?;
+                Ok(failed)
+            }
+        }
+    }
+}
+
+impl Drop for OutputDir {
+    fn drop(&mut self) {
+        // Gone when `finish` put it in place; otherwise what an unfinished run wrote.
+        let _ = std::fs::remove_dir_all(&self.staging);
+    }
+}
+
+/// [`OutputDir::begin`] and [`OutputDir::finish`] in one: for a front that knows its verdict
+/// before it writes.
+pub fn write_output_dir(
+    dir: &Path,
+    verdict: Verdict,
+    fill: impl FnOnce(&Path) -> Result<()>,
+) -> Result<PathBuf> {
+    OutputDir::begin(dir)?.finish(verdict, fill)
+}
+
+/// `dir` may be replaced: it does not exist, or it is an empty folder or one that an earlier
+/// run wrote.
+fn check_replaceable(dir: &Path) -> Result<()> {
+    let Ok(meta) = std::fs::symlink_metadata(dir) else {
+        return Ok(());
+    };
+    let is_dir = meta.is_dir() || (meta.file_type().is_symlink() && dir.is_dir());
+    if !is_dir {
+        return Err(Error::Parameter(format!(
+            "-o {}: exists and is not a directory",
+            dir.display()
+        )));
+    }
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .map_err(|e| io_error(dir, e))?
+        .filter_map(|entry| entry.ok())
+        .map(|entry| entry.file_name().to_string_lossy().into_owned())
+        .collect();
+    if names.is_empty() || OUTPUT_MARKERS.iter().any(|m| names.iter().any(|n| n == m)) {
+        return Ok(());
+    }
+    names.sort();
+    Err(Error::Parameter(format!(
+        "-o {}: a folder with other files (such as {}) and no report.json or structure.json \
+         of an earlier run; the outputs replace the folder whole: give a new or empty one",
+        dir.display(),
+        names[0]
+    )))
 }
 
 impl Drop for Outputs {
@@ -238,6 +424,129 @@ mod tests {
         let fresh = root.join("fresh");
         assert!(replace_folder(&fresh, |_| Err(Error::Parameter("no".into()))).is_err());
         assert_eq!(names(&root), ["saved"]);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    /// Writes `files` (name, contents) into `dir`.
+    fn fill_with<'a>(files: &'a [(&str, &str)]) -> impl FnOnce(&Path) -> Result<()> + 'a {
+        move |dir| {
+            let mut outputs = Outputs::new();
+            for (name, text) in files {
+                outputs.file(&dir.join(name), |w| w.write_all(text.as_bytes()))?;
+            }
+            outputs.commit()
+        }
+    }
+
+    #[test]
+    fn an_output_dir_holds_only_the_new_run() {
+        let root = scratch("output-dir");
+        let dir = root.join("out");
+        let first = [
+            ("report.json", "1"),
+            ("analysis.json", "old"),
+            ("surface.obj", "s"),
+        ];
+        let written = write_output_dir(&dir, Verdict::Passed, fill_with(&first)).unwrap();
+        assert_eq!(written, dir);
+        assert_eq!(names(&dir), ["analysis.json", "report.json", "surface.obj"]);
+        let second = [("report.json", "2")];
+        write_output_dir(&dir, Verdict::Passed, fill_with(&second)).unwrap();
+        // Nothing of the first run survives, and nothing is left beside it.
+        assert_eq!(names(&dir), ["report.json"]);
+        assert_eq!(
+            std::fs::read_to_string(dir.join("report.json")).unwrap(),
+            "2"
+        );
+        assert_eq!(names(&root), ["out"]);
+        // Kept on request: the earlier run as DIR.previous.
+        let third = [("report.json", "3")];
+        let out = OutputDir::begin(&dir).unwrap().previous(Previous::Keep);
+        out.finish(Verdict::Passed, fill_with(&third)).unwrap();
+        assert_eq!(names(&root), ["out", "out.previous"]);
+        let previous = root.join("out.previous/report.json");
+        assert_eq!(std::fs::read_to_string(previous).unwrap(), "2");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn a_failed_verdict_goes_beside_a_good_dir_and_a_later_pass_clears_it() {
+        let root = scratch("output-dir-failed");
+        let dir = root.join("out");
+        write_output_dir(&dir, Verdict::Passed, fill_with(&[("report.json", "good")])).unwrap();
+        let failed = [("report.json", "bad"), ("base.obj", "b")];
+        let written = write_output_dir(&dir, Verdict::Failed, fill_with(&failed)).unwrap();
+        assert_eq!(written, root.join("out.failed"));
+        assert_eq!(
+            std::fs::read_to_string(dir.join("report.json")).unwrap(),
+            "good"
+        );
+        assert_eq!(names(&written), ["base.obj", "report.json"]);
+        // A second failure replaces the first one's outputs whole.
+        write_output_dir(
+            &dir,
+            Verdict::Failed,
+            fill_with(&[("report.json", "worse")]),
+        )
+        .unwrap();
+        assert_eq!(names(&written), ["report.json"]);
+        assert_eq!(names(&root), ["out", "out.failed"]);
+        // A pass removes the failure's outputs, which were about an earlier run.
+        write_output_dir(&dir, Verdict::Passed, fill_with(&[("report.json", "new")])).unwrap();
+        assert_eq!(names(&root), ["out"]);
+        // Without a DIR, a failure writes DIR.failed only.
+        let fresh = root.join("fresh");
+        write_output_dir(&fresh, Verdict::Failed, fill_with(&[("report.json", "x")])).unwrap();
+        assert_eq!(names(&root), ["fresh.failed", "out"]);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn an_output_dir_that_fails_to_fill_changes_nothing() {
+        let root = scratch("output-dir-fill");
+        let dir = root.join("out");
+        write_output_dir(&dir, Verdict::Passed, fill_with(&[("report.json", "good")])).unwrap();
+        let failed = write_output_dir(&dir, Verdict::Passed, |d| {
+            fill_with(&[("report.json", "half")])(d)?;
+            Err(Error::Parameter("a full disk".into()))
+        });
+        assert!(matches!(failed, Err(Error::Parameter(_))), "{failed:?}");
+        assert_eq!(names(&root), ["out"]);
+        assert_eq!(
+            std::fs::read_to_string(dir.join("report.json")).unwrap(),
+            "good"
+        );
+        // Begun and dropped (the run failed before writing): no staging folder is left.
+        drop(OutputDir::begin(&root.join("never")).unwrap());
+        assert_eq!(names(&root), ["out"]);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn an_output_dir_is_refused_where_it_would_replace_what_is_not_a_run() {
+        let root = scratch("output-dir-refused");
+        let file = root.join("notes.txt");
+        std::fs::write(&file, "mine").unwrap();
+        let e = OutputDir::begin(&file).unwrap_err().to_string();
+        assert!(
+            e.contains("notes.txt: exists and is not a directory"),
+            "{e}"
+        );
+        // A folder of someone else's files (the home folder, say) is not replaced whole.
+        let e = OutputDir::begin(&root).unwrap_err().to_string();
+        assert!(
+            e.contains("a folder with other files (such as notes.txt)"),
+            "{e}"
+        );
+        for dot in [".", "..", "/"] {
+            let e = OutputDir::begin(Path::new(dot)).unwrap_err().to_string();
+            assert!(e.contains("not a folder name"), "{dot}: {e}");
+        }
+        // An empty folder is fine.
+        let empty = root.join("empty");
+        std::fs::create_dir(&empty).unwrap();
+        write_output_dir(&empty, Verdict::Passed, fill_with(&[("report.json", "1")])).unwrap();
+        assert_eq!(names(&root), ["empty", "notes.txt"]);
         std::fs::remove_dir_all(&root).unwrap();
     }
 

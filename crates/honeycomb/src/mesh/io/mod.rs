@@ -6,17 +6,21 @@
 //! quoted as written in the file.
 
 mod atomic;
+mod input;
 mod obj;
 mod off;
 mod ply;
 
-pub use atomic::{replace_folder, write_atomically, Outputs};
+pub use atomic::{
+    replace_folder, write_atomically, write_output_dir, OutputDir, Outputs, Previous, Verdict,
+};
+pub use input::{read_file, strip_bom, strip_bom_bytes, text_lines, TextLines, MAX_INPUT_BYTES};
 
 pub use obj::{parse_obj, write_obj};
 pub use off::{parse_off, write_off};
 pub use ply::{parse_ply, write_ply};
 
-use crate::error::{Error, Result};
+use crate::error::{short_point, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
 use std::io::Write;
@@ -59,10 +63,7 @@ impl Format {
 /// Reads an OBJ, OFF or PLY file, chosen by its extension.
 pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
     let format = Format::of(path).map_err(|message| parse_error(path, 0, message))?;
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = read_file(path)?;
     match format {
         Format::Obj => parse_obj(&String::from_utf8_lossy(&bytes), path),
         Format::Off => parse_off(&String::from_utf8_lossy(&bytes), path),
@@ -127,11 +128,6 @@ fn before(text: &str, c: char) -> &str {
     text.find(c).map_or(text, |i| &text[..i])
 }
 
-/// Drops a UTF-8 byte order mark, which some Windows tools write before the first keyword.
-fn strip_bom(text: &str) -> &str {
-    text.strip_prefix('\u{feff}').unwrap_or(text)
-}
-
 /// Reads the x, y, z of vertex `index` from `tokens`; values after them (an OBJ `w`, colours,
 /// normals) are left unread.
 fn parse_position<'a>(
@@ -170,8 +166,8 @@ fn check_finite(p: Vec3, index: usize, path: &Path, line: usize) -> Result<()> {
             path,
             line,
             format!(
-                "vertex {index} has a non-finite coordinate: ({}, {}, {})",
-                p.x, p.y, p.z
+                "vertex {index} has a non-finite coordinate: {}",
+                short_point(p)
             ),
         ))
     }

@@ -1,7 +1,9 @@
 //! Wavefront OBJ: `v` and `f` records. Everything else (normals, texture coordinates, groups,
 //! materials, `l` polylines, which are read elsewhere) is ignored.
 
-use super::{before, check_face_range, parse_error, parse_position, strip_bom, LoadedMesh};
+use super::{
+    before, check_face_range, parse_error, parse_position, strip_bom, text_lines, LoadedMesh,
+};
 use crate::error::Result;
 use crate::mesh::PolyMesh;
 use std::io::Write;
@@ -16,7 +18,7 @@ pub fn parse_obj(text: &str, path: &Path) -> Result<LoadedMesh> {
     let mut vertices = Vec::new();
     let mut faces = Vec::new();
     let mut face_lines = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
+    for (i, raw) in text_lines(text).enumerate() {
         let line = i + 1;
         let mut tokens = before(raw, '#').split_whitespace();
         match tokens.next() {
@@ -174,6 +176,19 @@ mod tests {
         assert_eq!(mesh.vertices.len(), 6);
         assert_eq!(mesh.vertices[2], Vec3::new(1.0, 1.0, 0.0));
         assert_eq!(mesh.faces, vec![vec![0, 1, 2, 3], vec![1, 2, 4, 5, 3, 0]]);
+    }
+
+    #[test]
+    fn every_line_ending_reads_alike() {
+        let lf = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let expected = parse(lf).unwrap().mesh;
+        assert_eq!(expected.faces, vec![vec![0, 1, 2]]);
+        for text in [lf.replace('\n', "\r\n"), lf.replace('\n', "\r")] {
+            assert_eq!(parse(&text).unwrap().mesh, expected, "{text:?}");
+        }
+        // Line numbers count CR-only lines too.
+        let err = error("v 0 0 0\rv 1 0 0\rv 0 x 0\r");
+        assert!(err.contains("test.obj:3: vertex 2: 'x'"), "{err}");
     }
 
     #[test]

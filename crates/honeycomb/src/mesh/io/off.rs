@@ -2,8 +2,8 @@
 //! ...): one vertex per line, then one face per line as `k i1 .. ik [colour]`.
 
 use super::{
-    before, capacity, check_face_range, parse_error, parse_position, strip_bom, write_counted_body,
-    LoadedMesh,
+    before, capacity, check_face_range, parse_error, parse_position, strip_bom, text_lines,
+    write_counted_body, LoadedMesh,
 };
 use crate::error::Result;
 use crate::mesh::PolyMesh;
@@ -14,7 +14,7 @@ use std::path::Path;
 pub fn parse_off(text: &str, path: &Path) -> Result<LoadedMesh> {
     let text = strip_bom(text);
     // Significant lines with their 1-based numbers: comments stripped, blank lines skipped.
-    let mut lines = text.lines().enumerate().filter_map(|(i, raw)| {
+    let mut lines = text_lines(text).enumerate().filter_map(|(i, raw)| {
         let content = before(raw, '#');
         (!content.trim().is_empty()).then_some((i + 1, content))
     });
@@ -53,10 +53,16 @@ pub fn parse_off(text: &str, path: &Path) -> Result<LoadedMesh> {
     let face_count = count("face")?;
 
     let mut vertices = Vec::with_capacity(capacity(vertex_count, text.len(), "0 0 0\n".len()));
+    // The first line read as a vertex that reads like a face: a vertex count too large takes
+    // face lines for vertices, and the file then ends early.
+    let mut face_like = None;
     for i in 0..vertex_count {
         let (line, content) = lines
             .next()
-            .ok_or_else(|| truncated(path, vertex_count, "vertices", i))?;
+            .ok_or_else(|| truncated(path, vertex_count, "vertices", i, face_like))?;
+        if face_like.is_none() && reads_like_a_face(content) {
+            face_like = Some((i, line));
+        }
         // Only x, y, z are read: NOFF normals, COFF colours etc. follow them on the line.
         vertices.push(parse_position(
             &mut content.split_whitespace(),
@@ -72,7 +78,7 @@ pub fn parse_off(text: &str, path: &Path) -> Result<LoadedMesh> {
     for f in 0..face_count {
         let (line, content) = lines
             .next()
-            .ok_or_else(|| truncated(path, face_count, "faces", f))?;
+            .ok_or_else(|| truncated(path, face_count, "faces", f, face_like))?;
         faces.push(parse_face(content, f, path, line)?);
         face_lines.push(line);
     }
@@ -134,12 +140,43 @@ fn check_keyword(keyword: &str, path: &Path, line: usize) -> Result<()> {
     Ok(())
 }
 
-fn truncated(path: &Path, expected: usize, what: &str, found: usize) -> crate::error::Error {
+/// `face_like`: the first line read as a vertex that reads like a face (vertex, line).
+fn truncated(
+    path: &Path,
+    expected: usize,
+    what: &str,
+    found: usize,
+    face_like: Option<(usize, usize)>,
+) -> crate::error::Error {
+    let hint = match face_like {
+        Some((vertex, line)) => format!(
+            "; line {line}, read as vertex {vertex}, reads like a face: is the vertex count \
+             {vertex} rather than the header's?"
+        ),
+        None => String::new(),
+    };
     parse_error(
         path,
         0,
-        format!("truncated file: the header says {expected} {what}, but only {found} were found"),
+        format!(
+            "truncated file: the header says {expected} {what}, but only {found} were found{hint}"
+        ),
     )
+}
+
+/// `k i1 .. ik ...`: a vertex count of at least 3 followed by at least that many integers.
+/// (A plain OFF vertex line has three numbers, so this never takes one for a face.)
+fn reads_like_a_face(content: &str) -> bool {
+    let mut tokens = content.split_whitespace();
+    let Some(Ok(k)) = tokens.next().map(str::parse::<usize>) else {
+        return false;
+    };
+    k >= 3
+        && tokens
+            .take(k)
+            .filter(|t| t.parse::<usize>().is_ok())
+            .count()
+            == k
 }
 
 /// Reads `k i1 .. ik`; anything after the indices (a colour) is ignored.
@@ -290,6 +327,30 @@ mod tests {
             err.contains("the header says 2 faces, but only 1 were found"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn a_vertex_count_too_large_points_at_the_first_face() {
+        // 5 vertices claimed, 4 given: the first face line is read as vertex 4.
+        let text = "OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+        let err = error(text);
+        assert!(
+            err.contains("the header says 2 faces, but only 1 were found; line 7, read as vertex 4, reads like a face: is the vertex count 4"),
+            "{err}"
+        );
+        // The same with CR line endings and a BOM.
+        let err = error(&format!("\u{feff}{}", text.replace('\n', "\r")));
+        assert!(err.contains("line 7, read as vertex 4"), "{err}");
+    }
+
+    #[test]
+    fn every_line_ending_reads_alike() {
+        let lf = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        let expected = parse(lf).unwrap();
+        assert_eq!(expected.mesh.faces, vec![vec![0, 1, 2]]);
+        for text in [lf.replace('\n', "\r\n"), lf.replace('\n', "\r")] {
+            assert_eq!(parse(&text).unwrap(), expected, "{text:?}");
+        }
     }
 
     #[test]

@@ -3,9 +3,10 @@
 //! other element and property is read past and dropped.
 
 use super::{
-    capacity, check_face_range, check_finite, parse_error, write_counted_body, LoadedMesh,
+    capacity, check_face_range, check_finite, parse_error, strip_bom_bytes, text_lines,
+    write_counted_body, LoadedMesh, TextLines,
 };
-use crate::error::{Error, Result};
+use crate::error::{short_number, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
 use std::io::Write;
@@ -86,6 +87,7 @@ struct Layout {
 
 /// Parses PLY bytes; `path` only names the file in messages.
 pub fn parse_ply(bytes: &[u8], path: &Path) -> Result<LoadedMesh> {
+    let bytes = strip_bom_bytes(bytes);
     if bytes.iter().all(u8::is_ascii_whitespace) {
         return Err(parse_error(path, 0, "empty file"));
     }
@@ -96,7 +98,7 @@ pub fn parse_ply(bytes: &[u8], path: &Path) -> Result<LoadedMesh> {
         Encoding::Ascii => {
             let text = String::from_utf8_lossy(data);
             let mut source = AsciiData {
-                lines: text.lines(),
+                lines: text_lines(&text),
                 line: header.lines,
                 tokens: "".split_whitespace(),
             };
@@ -118,6 +120,17 @@ fn parse_header(bytes: &[u8], path: &Path) -> Result<Header> {
     let mut elements: Vec<Element> = Vec::new();
     let mut pos = 0;
     let mut line = 0;
+    // The header's lines end as its first line does (LF, CRLF or CR alone): binary data may
+    // begin with either byte, so the ending is not guessed line by line.
+    let first_end = bytes
+        .iter()
+        .position(|&b| b == b'\n' || b == b'\r')
+        .unwrap_or(bytes.len());
+    let ending: &[u8] = match &bytes[first_end..] {
+        [b'\r', b'\n', ..] => b"\r\n",
+        [b'\r', ..] => b"\r",
+        _ => b"\n",
+    };
     loop {
         let Some(rest) = bytes.get(pos..).filter(|rest| !rest.is_empty()) else {
             return Err(parse_error(
@@ -126,8 +139,11 @@ fn parse_header(bytes: &[u8], path: &Path) -> Result<Header> {
                 "the header has no 'end_header' line",
             ));
         };
-        let len = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
-        pos += len + 1;
+        let len = rest
+            .windows(ending.len())
+            .position(|w| w == ending)
+            .unwrap_or(rest.len());
+        pos += len + ending.len();
         line += 1;
         let text = std::str::from_utf8(&rest[..len])
             .map_err(|_| parse_error(path, line, "the header line is not text"))?;
@@ -289,7 +305,7 @@ trait Source {
 
 /// ASCII data: one element instance per line.
 struct AsciiData<'a> {
-    lines: std::str::Lines<'a>,
+    lines: TextLines<'a>,
     line: usize,
     tokens: std::str::SplitWhitespace<'a>,
 }
@@ -478,7 +494,11 @@ fn read_data(
                             parse_error(
                                 path,
                                 line,
-                                format!("{} {i}: invalid list length {n}", element.name),
+                                format!(
+                                    "{} {i}: invalid list length {}",
+                                    element.name,
+                                    short_number(n)
+                                ),
                             )
                         })?;
                         if index_list != Some(p) {
@@ -500,7 +520,7 @@ fn read_data(
                                 parse_error(
                                     path,
                                     line,
-                                    format!("face {i}: {v} is not a vertex index"),
+                                    format!("face {i}: {} is not a vertex index", short_number(v)),
                                 )
                             })?);
                         }
@@ -666,6 +686,30 @@ mod tests {
         for end in 0..bytes.len() {
             assert!(parse(&bytes[..end]).is_err(), "prefix of {end} bytes");
         }
+    }
+
+    #[test]
+    fn a_byte_order_mark_and_every_line_ending_read_alike() {
+        let mut lf = Vec::new();
+        write_ply(&mut lf, &square()).unwrap();
+        let lf = String::from_utf8(lf).unwrap();
+        for text in [
+            format!("\u{feff}{lf}"),
+            lf.replace('\n', "\r\n"),
+            lf.replace('\n', "\r"),
+        ] {
+            assert_eq!(parse(text.as_bytes()).unwrap().mesh, square(), "{text:?}");
+        }
+        // Binary data after a header of CR endings, beginning with a LF byte (x = 10 as u8
+        // would be one): the header's own ending decides where the data starts.
+        let header = "ply\rformat binary_little_endian 1.0\relement vertex 3\r\
+                      property uchar x\rproperty uchar y\rproperty uchar z\r\
+                      element face 1\rproperty list uchar uchar vertex_indices\rend_header\r";
+        let mut bytes = header.as_bytes().to_vec();
+        bytes.extend_from_slice(&[10, 0, 0, 0, 13, 0, 0, 0, 1, 3, 0, 1, 2]);
+        let mesh = parse(&bytes).unwrap().mesh;
+        assert_eq!(mesh.vertices[0], Vec3::new(10.0, 0.0, 0.0));
+        assert_eq!(mesh.vertices[1], Vec3::new(0.0, 13.0, 0.0));
     }
 
     #[test]

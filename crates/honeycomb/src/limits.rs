@@ -1,0 +1,121 @@
+//! The largest work an option may ask for, checked before anything is allocated: beyond these a
+//! run would exhaust the memory of a 24 GiB machine or run for days, and a typo (an extra
+//! zero) should get an error at once rather than either. The lattice's own bounds are in
+//! [`crate::init`] ([`crate::init::MAX_CELLS`], [`crate::init::edge_length_range`]), the
+//! picture's in [`crate::render::MAX_WIDTH`].
+
+use crate::error::{Error, Result};
+use crate::init::{hexagon_area, CellSize};
+use crate::mesh::PolyMesh;
+
+/// Base-mesh vertices one solve takes at most: its factorization's fill grows faster than the
+/// mesh (140k vertices take about 3.5 GiB), so this is about 9 GiB.
+pub const MAX_SOLVE_VERTICES: usize = 300_000;
+
+/// Iterations times base-mesh vertices at most: about an hour at 140k vertices, half an hour
+/// at 10k.
+pub const MAX_VERTEX_ITERATIONS: usize = 100_000_000;
+
+/// A hexagonal mesh has about two vertices per cell.
+const VERTICES_PER_CELL: usize = 2;
+
+/// Cells a solve takes at most.
+pub const MAX_SOLVE_CELLS: usize = MAX_SOLVE_VERTICES / VERTICES_PER_CELL;
+
+/// `option value` (e.g. `--vertices 5000000`) asks for a solve of `vertices` vertices:
+/// refused beyond [`MAX_SOLVE_VERTICES`].
+pub fn check_solve_vertices(option: &str, vertices: usize) -> Result<()> {
+    if vertices > MAX_SOLVE_VERTICES {
+        return Err(Error::Parameter(format!(
+            "{option}: a solve of about {vertices} vertices; expected at most \
+             {MAX_SOLVE_VERTICES} (its factorization would need more memory than a machine \
+             of 24 GiB has)"
+        )));
+    }
+    Ok(())
+}
+
+/// The cells of `size` that a solve will take: `--cells` as asked, `--edge-length` on
+/// `surface`'s area (and within the lattice's own range there).
+pub fn check_solve_cells(size: CellSize, surface: &PolyMesh) -> Result<()> {
+    crate::init::check_edge_length(surface, size)?;
+    let (option, cells) = match size {
+        CellSize::Cells(n) => (format!("--cells {n}"), n as f64),
+        CellSize::EdgeLength(l) => (
+            format!("--edge-length {}", crate::error::rounded(l, 6)),
+            surface.area() / hexagon_area(1.0) / l / l,
+        ),
+    };
+    if cells > MAX_SOLVE_CELLS as f64 {
+        return Err(Error::Parameter(format!(
+            "{option}: about {cells:.0} cells to solve; expected at most {MAX_SOLVE_CELLS} \
+             (a solve takes at most {MAX_SOLVE_VERTICES} vertices)"
+        )));
+    }
+    Ok(())
+}
+
+/// `iterations` of a solve of `base`: refused beyond [`MAX_VERTEX_ITERATIONS`] and beyond
+/// [`MAX_SOLVE_VERTICES`].
+pub fn check_solve(base: &PolyMesh, iterations: usize) -> Result<()> {
+    let vertices = base.vertices.len();
+    if vertices > MAX_SOLVE_VERTICES {
+        return Err(Error::Parameter(format!(
+            "the base mesh has {vertices} vertices; a solve takes at most {MAX_SOLVE_VERTICES} \
+             (its factorization would need more memory than a machine of 24 GiB has)"
+        )));
+    }
+    let most = MAX_VERTEX_ITERATIONS / vertices.max(1);
+    if iterations > most {
+        return Err(Error::Parameter(format!(
+            "--iterations {iterations}: on {vertices} vertices expected at most {most} \
+             ({MAX_VERTEX_ITERATIONS:e} vertex-iterations, about an hour at 140k vertices)"
+        )));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solves_beyond_the_bounds_are_refused_naming_the_option() {
+        let e = check_solve_vertices("--vertices 2000000", 2_000_000).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("--vertices 2000000: a solve of about"),
+            "{e}"
+        );
+        check_solve_vertices("--vertices 1500", 1500).unwrap();
+        // A unit square: 1e-3 edges make about 385k cells.
+        let square = PolyMesh::unit_square();
+        let e = check_solve_cells(CellSize::EdgeLength(1e-3), &square).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("--edge-length 0.001: about 384900 cells"),
+            "{e}"
+        );
+        let e = check_solve_cells(CellSize::Cells(1_000_000), &square).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("--cells 1000000: about 1000000 cells"),
+            "{e}"
+        );
+        check_solve_cells(CellSize::Cells(150_000), &square).unwrap();
+        check_solve_cells(CellSize::EdgeLength(1.0), &square).unwrap();
+        let e = check_solve_cells(CellSize::EdgeLength(1e308), &square).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("--edge-length 1e308: no cell of that size fits"),
+            "{e}"
+        );
+        let e = check_solve(&square, 30_000_000).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("--iterations 30000000: on 4 vertices expected at most 25000000"),
+            "{e}"
+        );
+        check_solve(&square, 10_000).unwrap();
+    }
+}
