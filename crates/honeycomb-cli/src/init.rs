@@ -81,6 +81,7 @@ impl InitArgs {
             flattener: self.flatten.unwrap_or_default(),
             view: None,
             seed: self.seed,
+            turn: 0.0,
         };
         options.validate()?;
         Ok(options)

@@ -122,6 +122,9 @@ pub struct InitOptions {
     /// Shifts the lattice by a pseudo-random offset within one cell (0: no shift); the same
     /// seed gives the same mesh.
     pub seed: u64,
+    /// With `Method::Flatten`: turns the lattice by this much more than `align` does
+    /// (radians).
+    pub turn: f64,
 }
 
 /// A cell edge longer on S than this many lattice edges marks a fold of the flattening.
@@ -188,6 +191,7 @@ impl InitOptions {
             flattener: Flattener::Arap,
             view: None,
             seed: 0,
+            turn: 0.0,
         }
     }
 
@@ -541,7 +545,7 @@ fn lattice_angle(
     // Lattice edges run at 30, 90 and 150 degrees before rotation: turn 30 degrees less.
     let edge_direction = std::f64::consts::FRAC_PI_6;
     let mean = match &options.align {
-        Align::None => return Ok(0.0),
+        Align::None => return Ok(options.turn),
         Align::Boundary => sixfold_mean(
             flatten::boundary_half_edges(triangles)
                 .into_iter()
@@ -577,7 +581,7 @@ fn lattice_angle(
             mean
         }
     };
-    Ok(mean.map_or(0.0, |m| m - edge_direction))
+    Ok(mean.map_or(0.0, |m| m - edge_direction) + options.turn)
 }
 
 /// A pseudo-random shift of the lattice within one cell (splitmix64 of the seed).

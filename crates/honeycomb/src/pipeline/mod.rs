@@ -95,6 +95,10 @@ const ACROSS_CLOSENESS: f64 = 0.05;
 /// Seeds the pipeline tries with the field method: the next one's singular points and
 /// dislocations fall elsewhere.
 const FIELD_SEEDS: u64 = 2;
+/// Where walls across S on the flattened grid give no clean honeycomb, the grid is laid once
+/// more turned by this much (radians): half the lattice's symmetry, the cells' walls then
+/// where the first grid's edges ran.
+const SECOND_TURN: f64 = std::f64::consts::FRAC_PI_6;
 
 /// Runs the pipeline on `surface`.
 pub fn pipeline(
@@ -111,54 +115,100 @@ pub fn pipeline(
         Walls::Across if options.optimize.is_variant() => Walls::Free,
         w => w,
     };
-    let seeds = if options.init.method == Method::Field {
-        FIELD_SEEDS
-    } else {
-        1
-    };
+    let attempts = attempts(&options.init, walls);
     let mut spent = 0;
-    for k in 0..seeds {
-        let last = k + 1 == seeds;
-        let init_options = InitOptions {
-            seed: options.init.seed.wrapping_add(k),
-            ..options.init.clone()
-        };
+    for (k, (init_options, what)) in attempts.iter().enumerate() {
+        let last = k + 1 == attempts.len();
         progress(Step::Init);
-        let made = match base_mesh(surface, &model_surface, &init_options, options, walls) {
-            Ok(made) => made,
-            Err(e) if !last => {
-                notes.push(format!(
-                    "--seed {}: {e}; trying the next seed",
-                    init_options.seed
-                ));
-                continue;
+        let (made, made_notes) =
+            match base_mesh(surface, &model_surface, init_options, options, walls) {
+                Ok(made) => made,
+                Err(e) if !last => {
+                    notes.push(format!(
+                        "{what}: {}; trying {}",
+                        message(&e),
+                        attempts[k + 1].1
+                    ));
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
+        notes.extend(made_notes);
+        let solved = solve_made(
+            &made,
+            surface,
+            &model_surface,
+            options,
+            walls,
+            last,
+            progress,
+        )?;
+        match solved {
+            Ok(mut solved) if solved.report.honeycomb || last => {
+                notes.append(&mut solved.notes);
+                solved.report.iterations_total += spent;
+                solved.report.seconds = start.elapsed().as_secs_f64();
+                return Ok(Pipelined {
+                    initialized: made,
+                    base: solved.base,
+                    optimized: solved.optimized,
+                    measures: solved.measures,
+                    report: solved.report,
+                    notes,
+                });
             }
-            Err(e) => return Err(e),
-        };
-        notes.extend(made.1);
-        let made = made.0;
-        let mut solved = solve_made(&made, surface, &model_surface, options, walls, progress)?;
-        notes.append(&mut solved.notes);
-        solved.report.iterations_total += spent;
-        if solved.report.honeycomb || last {
-            solved.report.seconds = start.elapsed().as_secs_f64();
-            return Ok(Pipelined {
-                initialized: made,
-                base: solved.base,
-                optimized: solved.optimized,
-                measures: solved.measures,
-                report: solved.report,
-                notes,
-            });
+            Ok(solved) => {
+                spent += solved.report.iterations_total;
+                notes.push(format!(
+                    "{what}: its mesh gave no honeycomb (omega_max {} deg); trying {}",
+                    rounded(solved.measures.omega_max_deg, 3),
+                    attempts[k + 1].1
+                ));
+            }
+            Err((why, iterations)) => {
+                spent += iterations;
+                notes.push(format!("{what}: {why}; trying {}", attempts[k + 1].1));
+            }
         }
-        spent = solved.report.iterations_total;
-        notes.push(format!(
-            "--seed {}: its mesh gave no honeycomb (omega_max {} deg); trying the next seed",
-            init_options.seed,
-            rounded(solved.measures.omega_max_deg, 3)
-        ));
     }
-    unreachable!("the last seed returns")
+    unreachable!("the last attempt returns")
+}
+
+/// The base meshes the pipeline tries in turn, each with how a note names it: the field
+/// method's seed and the next; walls across on a flattened grid, the grid and the grid turned
+/// by [`SECOND_TURN`]; else the one asked for.
+fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
+    match (init.method, walls) {
+        (Method::Field, _) => (0..FIELD_SEEDS)
+            .map(|k| {
+                let seed = init.seed.wrapping_add(k);
+                let options = InitOptions {
+                    seed,
+                    ..init.clone()
+                };
+                (options, format!("--seed {seed}"))
+            })
+            .collect(),
+        (Method::Flatten, Walls::Across) => {
+            let turned = InitOptions {
+                turn: init.turn + SECOND_TURN,
+                ..init.clone()
+            };
+            vec![
+                (init.clone(), "the grid".into()),
+                (turned, "the grid turned by 30 degrees".into()),
+            ]
+        }
+        _ => vec![(init.clone(), "the grid".into())],
+    }
+}
+
+/// An error's message without its kind (for a note).
+fn message(e: &Error) -> String {
+    match e {
+        Error::Mesh(m) | Error::Parameter(m) | Error::Solver(m) => m.clone(),
+        e => e.to_string(),
+    }
 }
 
 /// The base mesh for `walls`, with the notes of what it took.
@@ -231,15 +281,19 @@ pub struct Solved {
     pub notes: Vec<String>,
 }
 
-/// Solves a mesh the pipeline made (its boundary cells may be dropped).
+/// Solves a mesh the pipeline made (its boundary cells may be dropped): walls across S, else
+/// (when `fallback`) the guided projection; or why walls across gave no clean honeycomb and
+/// the iterations that took.
+#[allow(clippy::type_complexity)]
 fn solve_made(
     made: &Initialized,
     surface: &PolyMesh,
     model_surface: &Surface,
     options: &PipelineOptions,
     walls: Walls,
+    fallback: bool,
     progress: &mut dyn FnMut(Step),
-) -> Result<Solved> {
+) -> Result<std::result::Result<Solved, (String, usize)>> {
     options.optimize.validate(&made.base)?;
     let mut spent = 0;
     let mut notes = Vec::new();
@@ -252,9 +306,12 @@ fn solve_made(
             &options.across,
             progress,
         )? {
-            Ok(solved) => return Ok(solved),
+            Ok(solved) => return Ok(Ok(solved)),
+            Err((why, iterations)) if !fallback => return Ok(Err((why, iterations))),
             Err((why, iterations)) => {
-                notes.push(why);
+                notes.push(format!(
+                    "{why}; this is the guided projection (--walls free)"
+                ));
                 spent = iterations;
             }
         }
@@ -267,7 +324,7 @@ fn solve_made(
     let mut solved = guided(&made.base, surface, options, guided_walls, progress)?;
     solved.report.iterations_total += spent;
     solved.notes.splice(0..0, notes);
-    Ok(solved)
+    Ok(Ok(solved))
 }
 
 /// Solves a designer's base mesh on `surface` (`None`: the base mesh itself) with its walls as
@@ -307,7 +364,9 @@ pub fn solve_base(
                 return Ok(solved);
             }
             Err((why, iterations)) => {
-                notes.push(why);
+                notes.push(format!(
+                    "{why}; this is the guided projection (--walls free)"
+                ));
                 spent = iterations;
                 result_walls = Walls::Free;
             }
@@ -380,15 +439,12 @@ fn across_or_none(
             progress(Step::Iteration(name, 1, info))
         },
     );
-    let fallback = "this is the guided projection of the same mesh (--walls free)";
     let across = match across {
         Ok(across) => across,
         // A sheet the fit left degenerate gives no lines to place vertices on.
         Err(Error::Solver(m)) => {
             return Ok(Err((
-                format!(
-                    "the node axes fitted to S's normals gave no honeycomb here ({m}); {fallback}"
-                ),
+                format!("the node axes fitted to S's normals gave no honeycomb here ({m})"),
                 spent,
             )))
         }
@@ -433,7 +489,7 @@ fn across_or_none(
             solved.measures = measures;
             Ok(Ok(solved))
         }
-        None => Ok(Err((format!("{why}, nor did a repair; {fallback}"), spent))),
+        None => Ok(Err((format!("{why}, nor did a repair"), spent))),
     }
 }
 
