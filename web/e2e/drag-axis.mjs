@@ -85,13 +85,15 @@ try {
     omega: Number(document.getElementById('omega_max').textContent),
     iterations: Number(document.getElementById('iteration').textContent),
     undo: !document.getElementById('undo').disabled,
+    axisMean: Number(document.getElementById('axis_mean').textContent),
+    axisMax: Number(document.getElementById('axis_max').textContent),
   }));
   const largestMove = (a, b) => a.reduce((m, x, i) => Math.max(m, Math.abs(x - b[i])), 0);
   const moved = largestMove(after.offset, before.offset);
   await page.screenshot({ path: screenshot });
   const findings = { vertex: tip.vertex, moved, omega_before: before.omega, omega_after: after.omega,
     iterations: after.iterations, errors_after_drag: after.errors, updates: after.states - before.states,
-    error_shown: shownError, undo: after.undo };
+    error_shown: shownError, undo: after.undo, axis_mean: after.axisMean, axis_max: after.axisMax };
 
   // The undo button brings back the honeycomb from before the drag.
   await page.click('#undo');
@@ -126,6 +128,10 @@ try {
   if (!(moved > 1e-3)) fail(`the drag did not change the model (largest move ${moved})`);
   if (!(after.omega < 0.05)) fail(`omega_max after the drag ${after.omega} degrees, expected < 0.05`);
   if (!after.undo) fail('undo is not offered after an edit');
+  // The panel shows how the walls stand on S: the axes' angles to its normals, mean and max.
+  if (!(after.axisMean > 0 && after.axisMean <= after.axisMax && after.axisMax < 90)) {
+    fail(`axis to normal shown as mean ${after.axisMean}, max ${after.axisMax} degrees`);
+  }
   if (after.errors.length) fail(`errors during the drag: ${after.errors.join(' | ')}`);
   if (!findings.undo_restored) fail('undo did not restore the honeycomb from before the drag');
   if (!(findings.vertex_drag_moved > 1e-3)) fail('the vertex drag did not change the model');

@@ -1,0 +1,274 @@
+//! How the walls stand on S, end to end: `--walls` on pipeline, optimize and serve, the report's
+//! keys, the printed row, `render --color axis`, `bench --roofs` and the demo's spherical image.
+
+mod common;
+
+use common::*;
+use std::path::{Path, PathBuf};
+
+/// A design surface as a file: the surface of a small demo on `shape`.
+fn surface_file(tmp: &TempDir, shape: &str) -> PathBuf {
+    let dir = tmp.join(&format!("demo-{shape}"));
+    demo(&dir, &["--vertices", "600", "--shape", shape]);
+    dir.join("surface.obj")
+}
+
+fn pipeline(surface: &Path, dir: &Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "pipeline",
+        surface.to_str().unwrap(),
+        "--cells",
+        "300",
+        "-o",
+    ];
+    args.push(dir.to_str().unwrap());
+    args.extend(extra);
+    run(args)
+}
+
+/// report.json says how the walls stand, measured from the written meshes; the printed row
+/// ends with the axes' mean lean; across leans less than uniform on a dome, and vertical walls
+/// (0,0,1) are uniform walls seen from above.
+#[test]
+fn pipeline_reports_how_the_walls_stand() {
+    let tmp = TempDir::new("walls-report");
+    let dome = surface_file(&tmp, "dome");
+    let mut leans = Vec::new();
+    for (name, walls) in [
+        ("across", None),
+        ("uniform", Some("uniform")),
+        ("up", Some("0,0,1")),
+    ] {
+        let dir = tmp.join(name);
+        let extra: Vec<&str> = walls.map(|w| vec!["--walls", w]).unwrap_or_default();
+        let out = pipeline(&dome, &dir, &extra);
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        let report = read_json(&dir, "report.json");
+        for key in ["mean", "p95", "max"] {
+            assert!(
+                number(&report["axis_normal_deg"], key).is_finite(),
+                "{report}"
+            );
+        }
+        for key in ["mean", "p95"] {
+            assert!(
+                number(&report["parallel_baseline_deg"], key) > 1.0,
+                "{report}"
+            );
+        }
+        assert!(number(&report, "edge_length_cv") < 0.25, "{report}");
+        assert!(number(&report, "iterations_total") >= number(&report, "iterations"));
+        let axis = number(&report["axis_normal_deg"], "mean");
+        // The printed row's last column is the axes' mean lean.
+        let text = stdout(&out);
+        let lines: Vec<&str> = text.lines().collect();
+        let header = lines.iter().position(|l| l.contains("omega_max")).unwrap();
+        let row = lines[header + 1];
+        let last: f64 = row.split_whitespace().last().unwrap().parse().unwrap();
+        assert!((last - axis).abs() < 0.051, "{row} against {axis}");
+        leans.push((report["walls"].clone(), axis));
+    }
+    assert_eq!(leans[0].0, "across");
+    assert_eq!(leans[1].0, "uniform");
+    assert_eq!(leans[2].0, serde_json::json!([0.0, 0.0, 1.0]));
+    assert!(leans[0].1 < 0.65 * leans[1].1, "{leans:?}");
+    assert!((leans[1].1 - leans[2].1).abs() < 0.5, "{leans:?}");
+}
+
+/// Bad `--walls` values and combinations get one clear error each, before anything is written.
+#[test]
+fn bad_walls_are_refused() {
+    let tmp = TempDir::new("walls-bad");
+    let dome = surface_file(&tmp, "dome");
+    let dir = tmp.join("out");
+    for (walls, keywords) in [
+        (
+            "sideways",
+            vec!["--walls", "sideways", "across, uniform, free"],
+        ),
+        ("0,0,0", vec!["--walls", "no length"]),
+        ("1,2", vec!["--walls", "three finite numbers"]),
+        ("nan,0,1", vec!["--walls"]),
+    ] {
+        let out = pipeline(&dome, &dir, &["--walls", walls]);
+        assert_clean_failure(&out, &keywords, Some(&dir));
+    }
+    let out = pipeline(&dome, &dir, &["--walls", "uniform", "--parallel"]);
+    assert_clean_failure(&out, &["--walls", "--parallel"], Some(&dir));
+    let out = run(["serve", "--walls", "uniform", "--port", "0"]);
+    assert_clean_failure(&out, &["--walls", "design surface"], None);
+}
+
+/// optimize stands a designer's base mesh's walls as asked, keeping every cell.
+#[test]
+fn optimize_takes_walls_too() {
+    let tmp = TempDir::new("walls-optimize");
+    let src = tmp.join("src");
+    demo(&src, &["--vertices", "400", "--shape", "dome"]);
+    let (base, surface) = (src.join("input_base.obj"), src.join("surface.obj"));
+    let cells = read_written_mesh(&base).faces.len();
+    for walls in ["across", "free", "uniform", "0.1,0,1"] {
+        let dir = tmp.join(walls);
+        let out = run([
+            "optimize",
+            base.to_str().unwrap(),
+            "--surface",
+            surface.to_str().unwrap(),
+            "--walls",
+            walls,
+            "-q",
+            "-o",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(out.status.success(), "{walls}: {}", stderr(&out));
+        let report = read_json(&dir, "report.json");
+        assert_eq!(number(&report, "faces") as usize, cells, "{walls}");
+        assert!(number(&report, "omega_max_deg") < 0.01, "{walls}: {report}");
+    }
+}
+
+/// `render --color axis` colours each wall by its nodes' lean from S's normal, and needs S.
+#[test]
+fn render_colours_walls_by_their_lean() {
+    let tmp = TempDir::new("walls-render");
+    let dir = tmp.join("demo");
+    demo(&dir, &["--vertices", "300"]);
+    let svg = tmp.join("axis.svg");
+    let out = run([
+        "render",
+        dir.to_str().unwrap(),
+        "--color",
+        "axis",
+        "-o",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("axis to normal"), "legend missing");
+    std::fs::remove_file(dir.join("surface.obj")).unwrap();
+    let out = run([
+        "render",
+        dir.to_str().unwrap(),
+        "--color",
+        "axis",
+        "-o",
+        tmp.join("again.svg").to_str().unwrap(),
+    ]);
+    assert_clean_failure(&out, &["--color axis", "surface"], None);
+}
+
+/// The demo's walls stand across its saddle: its node axes are spread over a strip of the
+/// sphere (Property 2), not gathered in one point as parallel axes would be.
+#[test]
+fn the_demo_stands_its_walls_across_the_saddle() {
+    let tmp = TempDir::new("walls-demo");
+    let dir = tmp.join("demo");
+    demo(&dir, &[]);
+    let report = read_json(&dir, "report.json");
+    assert_eq!(report["walls"], "across");
+    let (axis, parallel) = (
+        number(&report["axis_normal_deg"], "mean"),
+        number(&report["parallel_baseline_deg"], "mean"),
+    );
+    assert!(axis < 0.7 * parallel, "{axis} against {parallel}");
+    let structure = read_json(&dir, "structure.json");
+    let axes: Vec<[f64; 3]> = serde_json::from_value(structure["node_axes"].clone()).unwrap();
+    let (along, across) = principal_spreads_deg(&axes);
+    assert!(along > 10.0, "{along} {across}");
+    assert!(across < 0.6 * along, "{along} {across}");
+}
+
+/// The spreads (degrees) of unit vectors about their mean, along the direction they spread
+/// most and across it.
+fn principal_spreads_deg(axes: &[[f64; 3]]) -> (f64, f64) {
+    let n = axes.len() as f64;
+    let mean: Vec<f64> = (0..3)
+        .map(|k| axes.iter().map(|a| a[k]).sum::<f64>() / n)
+        .collect();
+    let norm = mean.iter().map(|m| m * m).sum::<f64>().sqrt();
+    let m: Vec<f64> = mean.iter().map(|x| x / norm).collect();
+    // A frame of the tangent plane at the mean.
+    let helper = if m[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let d: f64 = (0..3).map(|k| helper[k] * m[k]).sum();
+    let t1: Vec<f64> = (0..3).map(|k| helper[k] - d * m[k]).collect();
+    let l = t1.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let t1: Vec<f64> = t1.iter().map(|x| x / l).collect();
+    let t2 = [
+        m[1] * t1[2] - m[2] * t1[1],
+        m[2] * t1[0] - m[0] * t1[2],
+        m[0] * t1[1] - m[1] * t1[0],
+    ];
+    let (mut xx, mut yy, mut xy) = (0.0, 0.0, 0.0);
+    for a in axes {
+        let (x, y): (f64, f64) = (
+            (0..3).map(|k| a[k] * t1[k]).sum(),
+            (0..3).map(|k| a[k] * t2[k]).sum(),
+        );
+        xx += x * x / n;
+        yy += y * y / n;
+        xy += x * y / n;
+    }
+    let half = 0.5 * (xx + yy);
+    let root = (0.25 * (xx - yy) * (xx - yy) + xy * xy).sqrt();
+    let deg = |v: f64| v.max(0.0).sqrt().asin().to_degrees();
+    (deg(half + root), deg(half - root))
+}
+
+/// `bench --roofs DIR` has a row per surface in DIR (a base mesh skipped with its reason) and
+/// one JSON object per row with `--json`; without the default folder it says so and goes on.
+#[test]
+fn bench_roofs_has_a_row_per_surface() {
+    let tmp = TempDir::new("walls-bench");
+    let roofs = tmp.join("roofs");
+    std::fs::create_dir_all(&roofs).unwrap();
+    let dome = surface_file(&tmp, "dome");
+    std::fs::copy(&dome, roofs.join("dome.obj")).unwrap();
+    let src = tmp.join("src");
+    demo(&src, &["--vertices", "200"]);
+    std::fs::copy(src.join("input_base.obj"), roofs.join("hexes.obj")).unwrap();
+    let out = run([
+        "bench",
+        "--roofs",
+        roofs.to_str().unwrap(),
+        "--cells",
+        "200",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Vec<serde_json::Value> = stdout(&out)
+        .lines()
+        .map(|l| parse_json(l, "a bench row"))
+        .collect();
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    let dome_row = rows.iter().find(|r| r["surface"] == "dome.obj").unwrap();
+    assert_eq!(dome_row["status"], "ok", "{dome_row}");
+    for key in [
+        "cells",
+        "seconds",
+        "iterations_total",
+        "omega_max_deg",
+        "delta_max",
+        "axis_normal_mean_deg",
+        "axis_normal_p95_deg",
+        "parallel_mean_deg",
+        "parallel_p95_deg",
+        "edge_length_cv",
+    ] {
+        assert!(number(dome_row, key).is_finite(), "{key}: {dome_row}");
+    }
+    let hexes = rows.iter().find(|r| r["surface"] == "hexes.obj").unwrap();
+    assert_eq!(hexes["status"], "skipped", "{hexes}");
+    let table = run([
+        "bench",
+        "--roofs",
+        roofs.to_str().unwrap(),
+        "--cells",
+        "200",
+    ]);
+    assert!(table.status.success());
+    assert!(stdout(&table).lines().next().unwrap().contains("axis"));
+}
