@@ -38,7 +38,7 @@ pub struct InitArgs {
     pub boundary: BoundaryMode,
     /// With flatten: `arap` keeps lengths (cells of one size on S), `lscm` keeps angles only,
     /// `project` lays the grid in plan view along the mean normal (all node axes parallel)
-    /// [default: arap; pipeline tries project, then arap].
+    /// [default: arap; pipeline: arap for walls across or free, project for uniform walls].
     #[arg(long)]
     pub flatten: Option<Flattener>,
     /// Shifts the grid by a pseudo-random offset (flatten) or seeds the fields (field); the same
