@@ -54,7 +54,7 @@ impl Workspace {
             validate_surface_mesh(s)?;
         }
         let frame = Frame::of(base);
-        let thickness = thickness.unwrap_or(0.3 * frame.unit);
+        let thickness = thickness.unwrap_or(crate::optimize::DEFAULT_THICKNESS * frame.unit);
         check_thickness(thickness)?;
         // As optimize bounds it: deeper, every wall's measures are noise and M' overflows.
         crate::optimize::check_scale(

@@ -87,6 +87,9 @@ impl WallNormals {
     }
 }
 
+/// The distance between M and M' unless one is given, in mean edge lengths of the base mesh.
+pub const DEFAULT_THICKNESS: f64 = 0.3;
+
 /// A distance between M and M' (model units) must be a positive length.
 pub fn check_thickness(t: f64) -> Result<()> {
     if !t.is_finite() || t <= 0.0 {
@@ -313,7 +316,11 @@ impl<'a> Problem<'a> {
         let mut offset = None;
         if let Some(p) = &options.parallel {
             // M' starts as M moved along S's normal (the paper's initialization).
-            let depth = p.depth.or(options.thickness).unwrap_or(0.3 * frame.unit) / frame.unit;
+            let depth = p
+                .depth
+                .or(options.thickness)
+                .unwrap_or(DEFAULT_THICKNESS * frame.unit)
+                / frame.unit;
             let block = OffsetBlock { start: x.len() };
             for &v in &mesh.vertices {
                 x.extend_from_slice(&(v + surface.normal_at(v) * depth).to_array());
@@ -455,7 +462,7 @@ pub fn optimize(
             let axes = node_axes(&conn, &normals, |v| {
                 normalized_surface.normal_at(layout.vertex_at(&x, v))
             });
-            let thickness = options.thickness.unwrap_or(0.3 * frame.unit);
+            let thickness = options.thickness.unwrap_or(DEFAULT_THICKNESS * frame.unit);
             Honeycomb::new(optimized, &conn, axes, thickness)
         }
     };

@@ -21,7 +21,7 @@ use crate::init::{init, CellSize, Flattener, InitOptions, Initialized, Method};
 use crate::mesh::{validate_surface_mesh, PolyMesh};
 use crate::optimize::{
     optimize, optimize_made_mesh, Attempt, AxesOptions, Frame, OptimizeOptions, Optimized,
-    WallNormals,
+    WallNormals, DEFAULT_THICKNESS,
 };
 use crate::reciprocal::{walls_across, Across, AcrossOptions, Stage};
 use crate::report::Report;
@@ -115,9 +115,11 @@ pub fn pipeline(
         Walls::Across if options.optimize.is_variant() => Walls::Free,
         w => w,
     };
-    let attempts = attempts(&options.init, walls);
+    let mut attempts = attempts(&options.init, walls);
     let mut spent = 0;
-    for (k, (init_options, what)) in attempts.iter().enumerate() {
+    for k in 0..attempts.len() {
+        let (init_options, what) = attempts[k].clone();
+        let init_options = &init_options;
         let last = k + 1 == attempts.len();
         progress(Step::Init);
         let (made, made_notes) =
@@ -134,6 +136,16 @@ pub fn pipeline(
                 Err(e) => return Err(e),
             };
         notes.extend(made_notes);
+        if !last && made.report.method == Method::Field && init_options.method == Method::Flatten {
+            // No flattening suited S: the next try is the field's next seed, not a turned grid.
+            let seed = init_options.seed.wrapping_add(1);
+            let next = InitOptions {
+                method: Method::Field,
+                seed,
+                ..init_options.clone()
+            };
+            attempts[k + 1] = (next, format!("--method field --seed {seed}"));
+        }
         let solved = solve_made(
             &made,
             surface,
@@ -228,7 +240,9 @@ fn base_mesh(
             walls,
             &mut notes,
         )?,
-        Walls::Across | Walls::Free if options.init_chosen => {
+        Walls::Across | Walls::Free
+            if options.init_chosen || init_options.method == Method::Field =>
+        {
             let made = init(surface, init_options)?;
             if walls == Walls::Across {
                 check_cell_sizes(&made, model_surface)?;
@@ -251,7 +265,7 @@ fn base_mesh(
                             "the flattened grid's cells differ in edge length by a cv of {}",
                             rounded(made.report.edge_length_cv, 3)
                         ),
-                        Err(e) => e.to_string(),
+                        Err(e) => message(e),
                     };
                     check_curvature(surface, model_surface, init_options, &why)?;
                     notes.push(format!(
@@ -439,23 +453,25 @@ fn across_or_none(
             progress(Step::Iteration(name, 1, info))
         },
     );
-    let across = match across {
+    let mut across = match across {
         Ok(across) => across,
-        // A sheet the fit left degenerate gives no lines to place vertices on.
-        Err(Error::Solver(m)) => {
-            return Ok(Err((
-                format!("the node axes fitted to S's normals gave no honeycomb here ({m})"),
-                spent,
-            )))
+        // A sheet the fit left folded flat gives nodes no line to place their vertex on.
+        Err(Error::Solver(_)) => {
+            let why = "the node axes fitted to S's normals folded too sharply to place the \
+                       vertices on their walls";
+            return Ok(Err((why.into(), spent)));
         }
         Err(e) => return Err(e),
     };
+    let mut notes = Vec::new();
+    if options.thickness.is_none() {
+        let (h, m) = (&mut across.honeycomb, &mut across.measures);
+        notes.extend(uncross(h, &across.connectivity, m, model_surface));
+    }
     if is_clean(&across.measures, options.min_edge) {
-        return Ok(Ok(across_solved(
-            across,
-            options,
-            start.elapsed().as_secs_f64(),
-        )));
+        let mut solved = across_solved(across, options, start.elapsed().as_secs_f64());
+        solved.notes.append(&mut notes);
+        return Ok(Ok(solved));
     }
     let m = &across.measures;
     let why = format!(
@@ -504,6 +520,35 @@ fn is_clean(m: &Measures, min_edge: Option<f64>) -> bool {
         && min_edge.is_none_or(|l| m.min_edge_length >= l * (1.0 - 1e-9))
 }
 
+/// The least thickness (mean edge lengths) the default is made to keep every wall quad from
+/// crossing itself.
+const MIN_THICKNESS: f64 = 0.1;
+
+/// A honeycomb at the default thickness whose wall quads cross (M''s edge running against M's,
+/// where two neighbouring axes lean together) made thinner, down to [`MIN_THICKNESS`] mean edge
+/// lengths, so that none does; a note says so.
+fn uncross(
+    h: &mut crate::structure::Honeycomb,
+    conn: &crate::mesh::Connectivity,
+    measures: &mut Measures,
+    surface: &Surface,
+) -> Option<String> {
+    let unit = h.base.mean_edge_length();
+    let (default, least) = (DEFAULT_THICKNESS * unit, MIN_THICKNESS * unit);
+    let thickest = crate::structure::thickest_uncrossed(h);
+    if measures.nonconvex_walls == 0 || thickest >= default || 0.9 * thickest < least {
+        return None;
+    }
+    let thickness = 0.9 * thickest;
+    *h = crate::structure::Honeycomb::new(h.base.clone(), conn, h.axes.clone(), thickness);
+    *measures = measure(h, surface);
+    Some(format!(
+        "the walls are {} mean edge lengths deep instead of {DEFAULT_THICKNESS}, so that none \
+         crosses itself where neighbouring node axes lean together (--thickness sets it)",
+        rounded(thickness / unit, 3)
+    ))
+}
+
 /// What `is_clean` asks of a node's angles (degrees) and a wall's planarity.
 const CLEAN_OMEGA_DEG: f64 = 0.01;
 const CLEAN_DELTA: f64 = 1e-6;
@@ -539,7 +584,12 @@ fn repair(
         Err(Error::Solver(_)) => return Ok(None),
         Err(e) => return Err(e),
     };
-    let measures = measure(&optimized.honeycomb, model_surface);
+    let mut measures = measure(&optimized.honeycomb, model_surface);
+    let mut optimized = optimized;
+    if options.thickness.is_none() {
+        let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
+        uncross(h, conn, &mut measures, model_surface);
+    }
     Ok(is_clean(&measures, options.min_edge).then_some((optimized, measures)))
 }
 

@@ -120,7 +120,9 @@ pub fn walls_across(
         placement_iterations += placed.solve.iterations;
         chain(placed.solve);
         let vertices = placed.vertices.iter().map(|&p| frame.to_model(p)).collect();
-        let thickness = options.thickness.unwrap_or(0.3 * frame.unit);
+        let thickness = options
+            .thickness
+            .unwrap_or(crate::optimize::DEFAULT_THICKNESS * frame.unit);
         let honeycomb = Honeycomb::new(
             PolyMesh::new(vertices, mesh.faces.clone()),
             &conn,
