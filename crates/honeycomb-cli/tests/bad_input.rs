@@ -805,7 +805,11 @@ fn a_light_of_tiny_components_is_a_direction() {
     let report = common::read_json(&common::written(&output, &out), "report.json");
     assert!(report["shading"].is_object(), "{report}");
     let zero = TempDir::new("a_light_of_no_direction");
-    optimize_with_fails(&zero, &["--light", "0,0,0"], &["--light 0,0,0", "non-zero"]);
+    optimize_with_fails(
+        &zero,
+        &["--light", "0,0,0"],
+        &["--light", "0,0,0", "non-zero"],
+    );
 }
 
 #[test]

@@ -228,7 +228,7 @@ fn nonsense_variant_values_are_rejected() {
     demo_fails(
         "quad_direction",
         &["--quads", "zigzag", "--quad-direction", "0,0,0"],
-        &["--quads", "direction", "non-zero"],
+        &["--quad-direction", "0,0,0", "non-zero"],
     );
     demo_fails(
         "quad_weight",

@@ -87,7 +87,7 @@ fn bad_walls_are_refused() {
             vec!["--walls", "sideways", "across, uniform, free"],
         ),
         ("0,0,0", vec!["--walls", "no length"]),
-        ("1,2", vec!["--walls", "three finite numbers"]),
+        ("1,2", vec!["--walls", "three numbers"]),
         ("nan,0,1", vec!["--walls"]),
     ] {
         let out = pipeline(&dome, &dir, &["--walls", walls]);

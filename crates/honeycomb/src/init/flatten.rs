@@ -313,6 +313,8 @@ fn project(vertices: &[Vec3], triangles: &[[usize; 3]], view: Option<Vec3>) -> V
         .collect();
     let worst = |d: Vec3| units.iter().fold(f64::INFINITY, |m, n| m.min(n.dot(d)));
     let view = match view {
+        // An axis is a line: seen from whichever side S faces.
+        Some(d) if d.dot(mean) < 0.0 => -d,
         Some(d) => d,
         None if worst(mean) > 0.0 => mean,
         None => best_view(&worst, mean),

@@ -40,26 +40,9 @@ impl FromStr for Walls {
             "free" => return Ok(Walls::Free),
             _ => {}
         }
-        let expected = "expected across, uniform, free or a direction DX,DY,DZ";
-        let numbers: Vec<f64> = s
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|w| !w.is_empty())
-            .map(str::parse)
-            .collect::<std::result::Result<_, _>>()
-            .map_err(|_| format!("`{s}`: {expected}"))?;
-        match numbers[..] {
-            [x, y, z] if numbers.iter().all(|v| v.is_finite()) => {
-                let d = Vec3::new(x, y, z);
-                let n = d.norm();
-                // Scaled first: a tiny but valid direction would square to zero.
-                let largest = x.abs().max(y.abs()).max(z.abs());
-                if largest == 0.0 || !n.is_finite() {
-                    return Err(format!("`{s}`: the direction has no length"));
-                }
-                Ok(Walls::Direction((d / largest).normalized()))
-            }
-            _ => Err(format!("`{s}`: {expected} (three finite numbers)")),
-        }
+        crate::geometry::parse_direction(s)
+            .map(Walls::Direction)
+            .map_err(|e| format!("{e} (or across, uniform, free)"))
     }
 }
 
