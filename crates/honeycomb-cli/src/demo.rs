@@ -53,6 +53,7 @@ pub fn run(args: Args) -> Result<()> {
         &args.opts,
         prepared,
         &args.output,
+        &[],
         inputs,
     )
     .map(|_| ())

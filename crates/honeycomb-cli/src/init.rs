@@ -202,7 +202,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
     check_solve_cells(init.size, &surface).map_err(|e| name_file(&args.surface, e))?;
-    let out = OutputDir::begin(&args.output)?;
+    let out = OutputDir::begin(&args.output, &[args.surface.as_path()])?;
     let options = PipelineOptions {
         init,
         init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,
@@ -234,6 +234,9 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     };
     let mut report = made.report;
     report.seconds = start.elapsed().as_secs_f64();
+    let mut notes = made.notes;
+    notes.extend(out.note());
+    report.notes = notes.clone();
     let dir = &out.finish(verdict(&report), |dir| {
         let mut outputs = Outputs::new();
         // The mesh the kept solve started from, so that `optimize` repeats it.
@@ -250,7 +253,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     if output == Output::Human {
         print_report(&made.initialized, output, &dir.join("initial.obj"))?;
     }
-    print_notes(&made.notes, output);
+    print_notes(&notes, output);
     finish(
         &report,
         &made.optimized,

@@ -384,26 +384,9 @@ impl SolveArgs {
     }
 }
 
-/// `DX,DY,DZ` (or space separated) as a direction: scaled so that its largest component is
-/// 1, so that 1e-200,1e-200,1e-200 is the direction it is rather than a vector too short to
-/// normalize.
+/// `DX,DY,DZ` (or space separated) as a unit direction.
 fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
-    let parts: Vec<&str> = s
-        .split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|w| !w.is_empty())
-        .collect();
-    let numbers: Vec<f64> = parts
-        .iter()
-        .map(|w| w.parse::<f64>())
-        .collect::<std::result::Result<_, _>>()
-        .map_err(|_| format!("`{s}`: expected three numbers DX,DY,DZ"))?;
-    match numbers[..] {
-        [x, y, z] if numbers.iter().all(|v| v.is_finite()) => {
-            let largest = numbers.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-            Ok(Vec3::new(x, y, z) / largest.max(f64::MIN_POSITIVE))
-        }
-        _ => Err(format!("`{s}`: expected three finite numbers DX,DY,DZ")),
-    }
+    honeycomb::geometry::parse_direction(s)
 }
 
 /// Reads a mesh, passing the reader's warnings to stderr.
@@ -441,17 +424,18 @@ pub fn solve_options(
 }
 
 /// Optimizes a designer's base mesh (`optimize`, `demo`), writes the structure directory (with
-/// what `inputs` writes into it) and prints the result.
+/// what `inputs` writes into it; it may hold none of `input_files`) and prints the result.
 pub fn optimize_and_write(
     base: &PolyMesh,
     surface: Option<&PolyMesh>,
     args: &SolveArgs,
     prepared: Prepared,
     dir: &Path,
+    input_files: &[&Path],
     inputs: impl FnOnce(&Path) -> Result<()>,
 ) -> Result<Report> {
     // Before the solve, so that an unusable -o fails at once, not after a long run.
-    let out = OutputDir::begin(dir)?;
+    let out = OutputDir::begin(dir, input_files)?;
     solve_and_write(base, surface, args, out, prepared, inputs)
 }
 
@@ -479,7 +463,7 @@ fn solve_and_write(
     let mut bar = IterationBar::new(output, options.solver.max_iterations);
     let start = Instant::now();
     let model_surface = Surface::from_mesh(surface.unwrap_or(base))?;
-    let (optimized, mut report, notes) = if args.is_variant() {
+    let (optimized, mut report, mut notes) = if args.is_variant() {
         let result = optimize(base, surface, &options, &mut |info| bar.update(info));
         bar.finish();
         let optimized = result?;
@@ -509,6 +493,8 @@ fn solve_and_write(
             &sun_path,
         ));
     }
+    notes.extend(out.note());
+    report.notes = notes.clone();
     let quads: Vec<(&str, &PolyMesh)> = optimized.quads.iter().map(|q| ("quads.obj", q)).collect();
     let dir = out.finish(verdict(&report), |dir| {
         honeycomb::export::write_structure_with(dir, &optimized.honeycomb, &quads, &report)?;
@@ -535,9 +521,9 @@ pub fn verdict(report: &Report) -> Verdict {
     }
 }
 
-/// Notes of what a run changed on the way, on stderr.
+/// Notes of what a run changed on the way, on stderr (report.json has them too).
 pub fn print_notes(notes: &[String], output: Output) {
-    if output == Output::Human {
+    if output != Output::Quiet {
         for note in notes {
             eprintln!("note: {note}");
         }
@@ -574,7 +560,7 @@ pub fn finish(
                 m.edge_length_cv,
                 report.iterations_total
             );
-            if !report.converged && report.walls != Walls::Across {
+            if !report.converged && !report.honeycomb {
                 eprintln!(
                     "note: not converged to tolerance in {} iterations (largest residual {:.1e}); \
                      more --iterations may help",
@@ -656,21 +642,31 @@ pub fn run(args: Args) -> Result<()> {
         None => None,
     };
     let prepared = solve_options(&args.opts, &base, surface.as_ref())?;
+    let opts = &args.opts;
+    let given = [
+        Some(&args.base),
+        opts.surface.as_ref(),
+        opts.axes.as_ref(),
+        opts.sun_path.as_ref(),
+    ];
+    let input_files: Vec<&Path> = given.into_iter().flatten().map(|p| p.as_path()).collect();
     optimize_and_write(
         &base,
         surface.as_ref(),
         &args.opts,
         prepared,
         &args.output,
+        &input_files,
         |_| Ok(()),
     )
     .map(|_| ())
 }
 
-/// Prefixes a mesh validation error with the file it is about.
+/// Prefixes an error about a mesh with the file it is about.
 pub fn name_file(path: &Path, e: Error) -> Error {
     match e {
         Error::Mesh(m) => Error::Mesh(format!("{}: {m}", path.display())),
+        Error::Unsuited(m) => Error::Unsuited(format!("{}: {m}", path.display())),
         e => e,
     }
 }

@@ -73,7 +73,7 @@ pub fn run(args: Args) -> Result<()> {
     let surface_input = args.input.as_ref().is_some_and(|p| p.is_file());
     if args.walls.is_some() && !surface_input {
         return Err(Error::Parameter(
-            "--walls shapes the honeycomb made on a design surface: give one (serve              SURFACE.obj --walls ...); a structure directory and the demo have their walls"
+            "--walls shapes the honeycomb made on a design surface: give one (serve SURFACE.obj --walls ...); a structure directory and the demo have their walls"
                 .into(),
         ));
     }

@@ -55,6 +55,9 @@ pub struct Report {
     /// `pipeline`: the kept try has normals per edge because cell points gave no honeycomb.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub per_edge_fallback: Option<bool>,
+    /// What the run changed on the way to this result, one sentence each (the `note:` lines).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
     /// Wall time of the whole optimization (symbolic analysis included).
     pub seconds: f64,
     pub seconds_symbolic: f64,
@@ -126,6 +129,7 @@ impl Report {
             solves: None,
             second_try: None,
             per_edge_fallback: None,
+            notes: Vec::new(),
             seconds,
             seconds_symbolic: s.seconds_symbolic,
             seconds_assembly: s.seconds_assembly,

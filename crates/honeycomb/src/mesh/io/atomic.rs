@@ -201,6 +201,24 @@ pub enum Previous {
 /// replace; a folder that holds other files and none of these is someone else's.
 const OUTPUT_MARKERS: [&str; 2] = ["report.json", "structure.json"];
 
+/// Every file a run writes into its output directory. An earlier run's folder that holds
+/// anything else (a picture rendered into it, a note) is kept as `DIR.previous`, not removed.
+const RUN_FILES: [&str; 13] = [
+    "analysis.json",
+    "base.obj",
+    "demo.json",
+    "init.json",
+    "initial.obj",
+    "input_base.obj",
+    "offset.obj",
+    "quads.obj",
+    "report.json",
+    "spherical_image.obj",
+    "structure.json",
+    "surface.obj",
+    "walls.obj",
+];
+
 /// An output directory written as a whole: the files go into a hidden staging folder beside
 /// `DIR`, which takes `DIR`'s place only once every file is complete, so no file of an earlier
 /// run survives into a new one and a failure part way leaves `DIR` as it was.
@@ -209,7 +227,7 @@ const OUTPUT_MARKERS: [&str; 2] = ["report.json", "structure.json"];
 /// # use honeycomb::mesh::{OutputDir, Verdict};
 /// # fn main() -> honeycomb::Result<()> {
 /// // Before a long run, so that an unusable DIR fails at once:
-/// let out = OutputDir::begin(std::path::Path::new("out"))?;
+/// let out = OutputDir::begin(std::path::Path::new("out"), &[])?;
 /// // ... the run ...
 /// let written = out.finish(Verdict::Passed, |staging| {
 ///     honeycomb::export::write_json(&staging.join("report.json"), &"...")
@@ -222,27 +240,54 @@ pub struct OutputDir {
     dir: PathBuf,
     staging: PathBuf,
     previous: Previous,
+    /// A file in the earlier `DIR` that no run writes.
+    foreign: Option<String>,
 }
 
 impl OutputDir {
-    /// Checks `dir` (a folder name; absent, empty or an output directory of an earlier run)
-    /// and makes the staging folder beside it (and `dir`'s parents), so that a `dir` that
-    /// cannot be written fails before a long run rather than after it.
-    pub fn begin(dir: &Path) -> Result<OutputDir> {
+    /// Checks `dir` (a folder name; absent, empty or an output directory of an earlier run,
+    /// holding none of `inputs`) and makes the staging folder beside it (and `dir`'s parents),
+    /// so that a `dir` that cannot be written fails before a long run rather than after it. An
+    /// earlier run's folder that holds files no run writes is kept as `DIR.previous` (see
+    /// [`OutputDir::note`]). Staging folders that killed runs left beside `dir` are removed.
+    pub fn begin(dir: &Path, inputs: &[&Path]) -> Result<OutputDir> {
         let (parent, name) = parent_and_name(dir)?;
-        check_replaceable(dir)?;
+        let names = check_replaceable(dir)?;
+        check_inputs_outside(dir, inputs)?;
+        remove_abandoned(parent, name);
         let staging = parent.join(hidden(name, "staging"));
         std::fs::create_dir_all(&staging).map_err(|e| io_error(dir, e))?;
+        let foreign = names.into_iter().find(|n| !RUN_FILES.contains(&n.as_str()));
         Ok(OutputDir {
             dir: dir.to_path_buf(),
             staging,
-            previous: Previous::Remove,
+            previous: if foreign.is_some() {
+                Previous::Keep
+            } else {
+                Previous::Remove
+            },
+            foreign,
         })
     }
 
-    /// Sets what becomes of an earlier run's `DIR` (removed by default).
+    /// What happens to the earlier folder, when the user should know: it held files no run
+    /// writes, so it is kept as `DIR.previous`.
+    pub fn note(&self) -> Option<String> {
+        self.foreign.as_ref().map(|f| {
+            format!(
+                "{} held files no run writes (such as {f}): the earlier folder is kept as {}",
+                self.dir.display(),
+                sibling(&self.dir, "previous").display()
+            )
+        })
+    }
+
+    /// Sets what becomes of an earlier run's `DIR` (removed by default, kept when it holds
+    /// files no run writes).
     pub fn previous(mut self, previous: Previous) -> OutputDir {
-        self.previous = previous;
+        if self.foreign.is_none() {
+            self.previous = previous;
+        }
         self
     }
 
@@ -277,6 +322,7 @@ impl OutputDir {
             Verdict::Failed => {
                 let failed = self.failed_dir();
                 check_replaceable(&failed)?;
+                // A failed run's folder replaces an earlier failed one's whole.
                 put_in_place(&self.staging, &failed, Previous::Remove)?;
                 Ok(failed)
             }
@@ -298,14 +344,52 @@ pub fn write_output_dir(
     verdict: Verdict,
     fill: impl FnOnce(&Path) -> Result<()>,
 ) -> Result<PathBuf> {
-    OutputDir::begin(dir)?.finish(verdict, fill)
+    OutputDir::begin(dir, &[])?.finish(verdict, fill)
+}
+
+/// Refuses a `dir` that holds one of `inputs`: replacing it whole would take the input away.
+fn check_inputs_outside(dir: &Path, inputs: &[&Path]) -> Result<()> {
+    let Ok(dir) = dir.canonicalize() else {
+        return Ok(());
+    };
+    for input in inputs {
+        if input.canonicalize().is_ok_and(|p| p.starts_with(&dir)) {
+            return Err(Error::Parameter(format!(
+                "-o {}: holds the input {}, and the outputs replace the folder whole: write them \
+                 elsewhere",
+                dir.display(),
+                input.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Removes the staging folders of `name` beside it whose run has ended without finishing
+/// (killed, or out of memory): their process is gone.
+fn remove_abandoned(parent: &Path, name: &std::ffi::OsStr) {
+    let prefix = format!(".{}.staging-", name.to_string_lossy());
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let Some(rest) = file.strip_prefix(&prefix) else {
+            continue;
+        };
+        let pid = rest.split('-').next().and_then(|p| p.parse::<u32>().ok());
+        let alive = pid.is_some_and(|p| Path::new(&format!("/proc/{p}")).exists());
+        if pid.is_some() && !alive && Path::new("/proc/self").exists() {
+            let _ = std::fs::remove_dir_all(entry.path());
+        }
+    }
 }
 
 /// `dir` may be replaced: it does not exist, or it is an empty folder or one that an earlier
-/// run wrote.
-fn check_replaceable(dir: &Path) -> Result<()> {
+/// run wrote. Returns the names it holds.
+fn check_replaceable(dir: &Path) -> Result<Vec<String>> {
     let Ok(meta) = std::fs::symlink_metadata(dir) else {
-        return Ok(());
+        return Ok(Vec::new());
     };
     let is_dir = meta.is_dir() || (meta.file_type().is_symlink() && dir.is_dir());
     if !is_dir {
@@ -319,10 +403,10 @@ fn check_replaceable(dir: &Path) -> Result<()> {
         .filter_map(|entry| entry.ok())
         .map(|entry| entry.file_name().to_string_lossy().into_owned())
         .collect();
-    if names.is_empty() || OUTPUT_MARKERS.iter().any(|m| names.iter().any(|n| n == m)) {
-        return Ok(());
-    }
     names.sort();
+    if names.is_empty() || OUTPUT_MARKERS.iter().any(|m| names.iter().any(|n| n == m)) {
+        return Ok(names);
+    }
     Err(Error::Parameter(format!(
         "-o {}: a folder with other files (such as {}) and no report.json or structure.json \
          of an earlier run; the outputs replace the folder whole: give a new or empty one",
@@ -461,11 +545,42 @@ mod tests {
         assert_eq!(names(&root), ["out"]);
         // Kept on request: the earlier run as DIR.previous.
         let third = [("report.json", "3")];
-        let out = OutputDir::begin(&dir).unwrap().previous(Previous::Keep);
+        let out = OutputDir::begin(&dir, &[])
+            .unwrap()
+            .previous(Previous::Keep);
         out.finish(Verdict::Passed, fill_with(&third)).unwrap();
         assert_eq!(names(&root), ["out", "out.previous"]);
         let previous = root.join("out.previous/report.json");
         assert_eq!(std::fs::read_to_string(previous).unwrap(), "2");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    /// A user's file in an earlier run's folder survives as DIR.previous; a folder holding
+    /// an input of the run is refused; a staging folder a killed run left is cleared.
+    #[test]
+    fn nothing_of_the_user_is_lost() {
+        let root = scratch("output-dir-user");
+        let dir = root.join("out");
+        let first = [("report.json", "1"), ("structure.json", "s")];
+        write_output_dir(&dir, Verdict::Passed, fill_with(&first)).unwrap();
+        std::fs::write(dir.join("thesis.tex"), "mine").unwrap();
+        let out = OutputDir::begin(&dir, &[]).unwrap();
+        assert!(out.note().unwrap().contains("thesis.tex"));
+        out.finish(Verdict::Passed, fill_with(&[("report.json", "2")]))
+            .unwrap();
+        assert_eq!(names(&dir), ["report.json"]);
+        let kept = root.join("out.previous/thesis.tex");
+        assert_eq!(std::fs::read_to_string(kept).unwrap(), "mine");
+
+        let input = dir.join("report.json");
+        let e = OutputDir::begin(&dir, &[&input]).unwrap_err().to_string();
+        assert!(e.contains("holds the input"), "{e}");
+
+        // A staging folder of a process that is gone (pid 0 never names a user process).
+        let abandoned = root.join(".out.staging-0-7");
+        std::fs::create_dir_all(&abandoned).unwrap();
+        drop(OutputDir::begin(&dir, &[]).unwrap());
+        assert!(!abandoned.exists());
         std::fs::remove_dir_all(&root).unwrap();
     }
 
@@ -517,7 +632,7 @@ mod tests {
             "good"
         );
         // Begun and dropped (the run failed before writing): no staging folder is left.
-        drop(OutputDir::begin(&root.join("never")).unwrap());
+        drop(OutputDir::begin(&root.join("never"), &[]).unwrap());
         assert_eq!(names(&root), ["out"]);
         std::fs::remove_dir_all(&root).unwrap();
     }
@@ -527,19 +642,21 @@ mod tests {
         let root = scratch("output-dir-refused");
         let file = root.join("notes.txt");
         std::fs::write(&file, "mine").unwrap();
-        let e = OutputDir::begin(&file).unwrap_err().to_string();
+        let e = OutputDir::begin(&file, &[]).unwrap_err().to_string();
         assert!(
             e.contains("notes.txt: exists and is not a directory"),
             "{e}"
         );
         // A folder of someone else's files (the home folder, say) is not replaced whole.
-        let e = OutputDir::begin(&root).unwrap_err().to_string();
+        let e = OutputDir::begin(&root, &[]).unwrap_err().to_string();
         assert!(
             e.contains("a folder with other files (such as notes.txt)"),
             "{e}"
         );
         for dot in [".", "..", "/"] {
-            let e = OutputDir::begin(Path::new(dot)).unwrap_err().to_string();
+            let e = OutputDir::begin(Path::new(dot), &[])
+                .unwrap_err()
+                .to_string();
             assert!(e.contains("not a folder name"), "{dot}: {e}");
         }
         // An empty folder is fine.
