@@ -136,6 +136,7 @@ pub fn run(args: Args) -> Result<()> {
         &Coloring {
             label,
             per_wall: &per_wall,
+            linear: args.color == "axis",
         },
         args.view,
         args.width,

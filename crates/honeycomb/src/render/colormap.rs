@@ -54,6 +54,20 @@ impl Scale {
         Scale { min, max, log }
     }
 
+    /// From 0 to the largest finite value, linearly.
+    pub fn linear_from_zero(values: &[f64]) -> Scale {
+        let max = values
+            .iter()
+            .copied()
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max);
+        Scale {
+            min: 0.0,
+            max: if max > 0.0 { max } else { 1.0 },
+            log: false,
+        }
+    }
+
     pub fn position(&self, v: f64) -> f64 {
         let (lo, hi, v) = if self.log {
             (self.min.log10(), self.max.log10(), v.max(self.min).log10())

@@ -11,6 +11,8 @@ use crate::structure::Honeycomb;
 pub struct Coloring<'a> {
     pub label: &'a str,
     pub per_wall: &'a [f64],
+    /// A linear scale from 0 (angles), where errors spanning decades get a log scale.
+    pub linear: bool,
 }
 
 const BAR: f64 = 140.0;
@@ -38,7 +40,11 @@ pub fn walls_scene(h: &Honeycomb, coloring: &Coloring, view: View, width: u32) -
         )
     };
 
-    let scale = Scale::of(coloring.per_wall);
+    let scale = if coloring.linear {
+        Scale::linear_from_zero(coloring.per_wall)
+    } else {
+        Scale::of(coloring.per_wall)
+    };
     let mut order: Vec<usize> = (0..h.edges.len()).collect();
     let depth = |e: usize| {
         let [a, b] = h.edges[e];
