@@ -34,7 +34,8 @@ pub const MAX_DROPPED_SHARE: f64 = 0.03;
 
 /// The cells with a boundary edge that hold a collapsed cap, a broken node or a broken wall
 /// (far from planar, or not convex), or that border an inner cell holding one (sorted). Inner
-/// cells are never listed: dropping them would open holes.
+/// cells are never listed: dropping them would open holes; nor is a cell whose loss would cut
+/// the rest in pieces (a neck one cell wide).
 pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -> Vec<usize> {
     let limit = COLLAPSED_CAP * m.mean_edge_length;
     let length = |e: usize| {
@@ -71,7 +72,46 @@ pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -
             }
         }
     }
-    (0..h.base.faces.len()).filter(|&f| broken[f]).collect()
+    let candidates: Vec<usize> = (0..h.base.faces.len()).filter(|&f| broken[f]).collect();
+    keeping_one_piece(conn, h.base.faces.len(), &candidates)
+}
+
+/// Of `candidates` (sorted), those that can go in turn while the rest of the cells stays one
+/// piece (cells joined through shared edges).
+fn keeping_one_piece(conn: &Connectivity, cells: usize, candidates: &[usize]) -> Vec<usize> {
+    let mut gone = vec![false; cells];
+    let mut dropped = Vec::new();
+    for &f in candidates {
+        gone[f] = true;
+        if is_one_piece(conn, &gone) {
+            dropped.push(f);
+        } else {
+            gone[f] = false;
+        }
+    }
+    dropped
+}
+
+/// Whether the cells not `gone` form one piece through shared edges.
+fn is_one_piece(conn: &Connectivity, gone: &[bool]) -> bool {
+    let Some(root) = gone.iter().position(|&g| !g) else {
+        return true;
+    };
+    let mut seen = gone.to_vec();
+    seen[root] = true;
+    let (mut stack, mut reached) = (vec![root], 1);
+    while let Some(f) = stack.pop() {
+        for &e in &conn.face_edges[f] {
+            for g in conn.edge_faces[e].iter().flatten().copied() {
+                if !seen[g] {
+                    seen[g] = true;
+                    reached += 1;
+                    stack.push(g);
+                }
+            }
+        }
+    }
+    reached == gone.iter().filter(|&&g| !g).count()
 }
 
 /// The vertices of `mesh` that some face outside `drop` (sorted) uses, in order: vertex `k` of
@@ -244,5 +284,35 @@ mod tests {
         // The kept cells are the same polygons.
         let (_, _, m) = measured(&rest);
         assert!(m.omega_max_deg < 1e-9);
+    }
+}
+
+#[cfg(test)]
+mod piece_tests {
+    use super::*;
+    use crate::generate::hex_disk;
+
+    /// Two halves of a disk joined by one cell: that cell may not go, others may.
+    #[test]
+    fn a_drop_never_cuts_the_mesh_in_pieces() {
+        let disk = hex_disk(4.0);
+        let centre = |m: &PolyMesh, f: usize| m.face_centroid(f);
+        // Without the column of cells across x = 0, but its middle cell.
+        let cut: Vec<usize> = (0..disk.faces.len())
+            .filter(|&f| centre(&disk, f).x.abs() < 1.0 && centre(&disk, f).norm() > 0.5)
+            .collect();
+        let halves = without_cells(&disk, &cut);
+        let conn = Connectivity::build(&halves).unwrap();
+        let cells = halves.faces.len();
+        assert!(is_one_piece(&conn, &vec![false; cells]));
+        let bridge = (0..cells)
+            .find(|&f| centre(&halves, f).norm() < 0.5)
+            .unwrap();
+        let far = (0..cells)
+            .max_by(|&a, &b| centre(&halves, a).x.total_cmp(&centre(&halves, b).x))
+            .unwrap();
+        let mut candidates = vec![bridge, far];
+        candidates.sort();
+        assert_eq!(keeping_one_piece(&conn, cells, &candidates), vec![far]);
     }
 }
