@@ -80,7 +80,12 @@ pub fn run(args: RoofsArgs) -> Result<()> {
         .clone()
         .unwrap_or_else(|| PathBuf::from(DEFAULT_DIR));
     match surface_files(&dir) {
-        Ok(files) => surfaces.extend(files.into_iter().map(|p| (file_name(&p), Source::File(p)))),
+        Ok(files) => {
+            if files.is_empty() {
+                eprintln!("note: {} has no OBJ, OFF or PLY file", dir.display());
+            }
+            surfaces.extend(files.into_iter().map(|p| (file_name(&p), Source::File(p))))
+        }
         // The default folder may be absent on a fresh machine: say so and go on.
         Err(e) if args.dir.is_none() => eprintln!("skipping {}: {e}", dir.display()),
         Err(e) => return Err(e),
@@ -104,6 +109,11 @@ pub fn run(args: RoofsArgs) -> Result<()> {
     }
     for &cells in &args.cells {
         for (name, source) in &surfaces {
+            if !args.json {
+                // The surface's name first: a row can take seconds.
+                print!("{name:<28} {cells:>6} ");
+                let _ = std::io::Write::flush(&mut std::io::stdout());
+            }
             let row = bench_one(name, source, cells, args.walls);
             print_row(&row, args.json)?;
         }
@@ -118,6 +128,12 @@ enum Source {
 
 /// The mesh files in `dir` (OBJ, OFF, PLY), by name.
 fn surface_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    if !dir.is_dir() {
+        return Err(Error::Parameter(format!(
+            "--roofs {}: no such folder (expected a folder of design surfaces: OBJ, OFF, PLY)",
+            dir.display()
+        )));
+    }
     let entries = std::fs::read_dir(dir).map_err(|source| Error::Io {
         path: dir.to_path_buf(),
         source,
@@ -222,9 +238,7 @@ fn print_row(row: &Row, json: bool) -> Result<()> {
     }
     let Some(f) = &row.figures else {
         println!(
-            "{:<28} {:>6} {:>6}  {}: {}",
-            row.surface,
-            row.cells_asked,
+            "{:>6}  {}: {}",
             "-",
             row.status,
             row.reason.as_deref().unwrap_or("")
@@ -232,9 +246,7 @@ fn print_row(row: &Row, json: bool) -> Result<()> {
         return Ok(());
     };
     println!(
-        "{:<28} {:>6} {:>6} {:>7.2} {:>4} {:>9.1e} {:>9.1e} {:>6.2} {:>6.2} {:>6.2} {:>6.2} {:>6.3}  {}",
-        row.surface,
-        row.cells_asked,
+        "{:>6} {:>7.2} {:>4} {:>9.1e} {:>9.1e} {:>6.2} {:>6.2} {:>6.2} {:>6.2} {:>6.3}  {}",
         f.cells,
         f.seconds,
         f.iterations_total,

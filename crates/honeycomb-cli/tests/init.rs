@@ -173,7 +173,7 @@ fn pipeline_picks_the_flattening() {
     let (out, dir) = pipeline("vault", &vault, &extra);
     assert!(out.status.success(), "{}", stderr(&out));
     assert!(
-        stderr(&out).contains("note: --flatten project"),
+        stderr(&out).contains("note: seen along its mean normal"),
         "{}",
         stderr(&out)
     );

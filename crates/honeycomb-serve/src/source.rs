@@ -77,6 +77,19 @@ impl Source {
                 options.walls = *walls;
                 options.optimize.thickness = thickness;
                 let made = pipeline(&surface, &options, &mut |_| {})?;
+                for note in &made.notes {
+                    eprintln!("note: {note}");
+                }
+                if !made.report.honeycomb {
+                    let m = &made.measures;
+                    return Err(Error::Solver(format!(
+                        "the pipeline made no honeycomb on this surface (omega_max {} deg, \
+                         delta_max {}): nothing to edit; `honeycomb pipeline` writes the result \
+                         for inspection",
+                        honeycomb::error::rounded(m.omega_max_deg, 3),
+                        honeycomb::error::rounded(m.delta_max, 3)
+                    )));
+                }
                 Workspace::from_honeycomb(&made.optimized.honeycomb, Some(&surface))
             }
         }

@@ -21,6 +21,10 @@ pub enum Error {
     /// A mesh that parses but is not acceptable (non-manifold, valence, degenerate, ...).
     #[error("invalid mesh: {0}")]
     Mesh(String),
+    /// A sound surface that the structure asked for does not suit (too curved for cells of
+    /// one size, say).
+    #[error("unsuited surface: {0}")]
+    Unsuited(String),
     /// A parameter outside its meaningful range.
     #[error("invalid parameter: {0}")]
     Parameter(String),

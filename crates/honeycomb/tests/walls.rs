@@ -10,6 +10,8 @@ use honeycomb::mesh::{Connectivity, PolyMesh};
 use honeycomb::pipeline::{pipeline, PipelineOptions, Pipelined, Walls};
 use std::time::Instant;
 
+mod common;
+
 const SIZES: [usize; 3] = [750, 1500, 4000];
 
 fn run(surface: &PolyMesh, cells: usize) -> Pipelined {
@@ -172,7 +174,11 @@ fn a_surface_too_curved_for_the_cells_is_refused_at_once() {
         .expect("too curved");
     assert!(start.elapsed().as_secs_f64() < 5.0);
     let e = e.to_string();
-    for word in ["too curved", "units of 60 degrees", "--method field"] {
+    for word in [
+        "too curved",
+        "units of 60 degrees",
+        "pieces that each curve less",
+    ] {
         assert!(e.contains(word), "{e}");
     }
 }
@@ -242,6 +248,76 @@ fn bumpy_ball(amp: f64) -> PolyMesh {
         }
     }
     PolyMesh::new(vertices, faces)
+}
+
+/// The real roofs of ../shared/data at 1500 cells: each a honeycomb in one piece (cells are
+/// dropped only where that leaves the rest whole), camelhead refused at once.
+#[test]
+fn the_shared_roofs_become_honeycombs_in_one_piece() {
+    let Some(data) = common::shared_data() else {
+        println!("skipping: ../shared/data not found");
+        return;
+    };
+    for file in [
+        "barrellvault10m.ply",
+        "botanic-garden-bubble.off",
+        "free_negshell_marc_anet.obj",
+        "inspired_mesh.obj",
+        "Neumunster.ply",
+        "train-station.off",
+        "YasIsland.off",
+    ] {
+        let surface = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
+        let made = run(&surface, 1500);
+        let r = &made.report;
+        println!(
+            "{file}: walls {}, {} iterations, axis {:.2} against {:.2}, cv {:.3}",
+            r.walls.label(),
+            r.iterations_total,
+            made.measures.axis_normal_deg.mean,
+            made.measures.parallel_baseline_deg.mean,
+            made.measures.edge_length_cv
+        );
+        assert!(r.honeycomb, "{file}: {:?}", made.notes);
+        assert!(made.measures.omega_max_deg < 0.01, "{file}");
+        let base = &made.optimized.honeycomb.base;
+        assert_eq!(pieces(base), 1, "{file}: {:?}", made.notes);
+        let off = (base.faces.len() as f64 / 1500.0 - 1.0).abs();
+        assert!(off <= 0.15, "{file}: {} cells", base.faces.len());
+    }
+    let camelhead = honeycomb::mesh::read_mesh(&data.join("camelhead.off"))
+        .unwrap()
+        .mesh;
+    let start = Instant::now();
+    let e = pipeline(&camelhead, &PipelineOptions::new(1500), &mut |_| {}).err();
+    assert!(e.is_some_and(|e| e.to_string().contains("too curved")));
+    assert!(start.elapsed().as_secs_f64() < 5.0);
+}
+
+/// Pieces of a mesh joined through shared edges.
+fn pieces(mesh: &PolyMesh) -> usize {
+    let conn = Connectivity::build(mesh).unwrap();
+    let mut seen = vec![false; mesh.faces.len()];
+    let mut count = 0;
+    for root in 0..mesh.faces.len() {
+        if seen[root] {
+            continue;
+        }
+        count += 1;
+        seen[root] = true;
+        let mut stack = vec![root];
+        while let Some(f) = stack.pop() {
+            for &e in &conn.face_edges[f] {
+                for g in conn.edge_faces[e].iter().flatten().copied() {
+                    if !seen[g] {
+                        seen[g] = true;
+                        stack.push(g);
+                    }
+                }
+            }
+        }
+    }
+    count
 }
 
 /// A vertical cylindrical band of radius `r` and height `h`, triangulated.

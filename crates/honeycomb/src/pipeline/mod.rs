@@ -146,6 +146,13 @@ pub fn pipeline(
             };
             attempts[k + 1] = (next, format!("--method field --seed {seed}"));
         }
+        // Uniform walls on a grid that is not the plan view (S folds over seen from it) are the
+        // guided projection's.
+        let planar = made.report.flat.as_ref().map(|f| f.flattener) == Some(Flattener::Project);
+        let walls = match walls {
+            Walls::Uniform if !planar => Walls::Free,
+            w => w,
+        };
         let solved = solve_made(
             &made,
             surface,
@@ -157,9 +164,13 @@ pub fn pipeline(
         )?;
         match solved {
             Ok(mut solved) if solved.report.honeycomb || last => {
+                if k > 0 {
+                    notes.push(format!("this is {what}"));
+                }
                 notes.append(&mut solved.notes);
                 solved.report.iterations_total += spent;
                 solved.report.seconds = start.elapsed().as_secs_f64();
+                solved.report.notes = notes.clone();
                 return Ok(Pipelined {
                     initialized: made,
                     base: solved.base,
@@ -207,18 +218,23 @@ fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
                 ..init.clone()
             };
             vec![
-                (init.clone(), "the grid".into()),
-                (turned, "the grid turned by 30 degrees".into()),
+                (init.clone(), "the flattened grid".into()),
+                (turned, "the flattened grid turned by 30 degrees".into()),
             ]
         }
         _ => vec![(init.clone(), "the grid".into())],
     }
 }
 
+/// `n` things, in words: "1 boundary cell", "3 boundary cells".
+fn cells(n: usize, thing: &str) -> String {
+    format!("{n} {thing}{}", if n == 1 { "" } else { "s" })
+}
+
 /// An error's message without its kind (for a note).
 fn message(e: &Error) -> String {
     match e {
-        Error::Mesh(m) | Error::Parameter(m) | Error::Solver(m) => m.clone(),
+        Error::Mesh(m) | Error::Parameter(m) | Error::Solver(m) | Error::Unsuited(m) => m.clone(),
         e => e.to_string(),
     }
 }
@@ -309,8 +325,6 @@ fn solve_made(
     progress: &mut dyn FnMut(Step),
 ) -> Result<std::result::Result<Solved, (String, usize)>> {
     options.optimize.validate(&made.base)?;
-    let mut spent = 0;
-    let mut notes = Vec::new();
     if walls == Walls::Across {
         match across_or_none(
             &made.base,
@@ -321,24 +335,14 @@ fn solve_made(
             progress,
         )? {
             Ok(solved) => return Ok(Ok(solved)),
-            Err((why, iterations)) if !fallback => return Ok(Err((why, iterations))),
-            Err((why, iterations)) => {
-                notes.push(format!(
-                    "{why}; this is the guided projection (--walls free)"
-                ));
-                spent = iterations;
+            Err(not_clean) if !fallback => return Ok(Err((not_clean.why, not_clean.iterations))),
+            Err(not_clean) => {
+                let solved = guided(&made.base, surface, options, Walls::Free, progress)?;
+                return Ok(Ok(not_clean.or_better(solved)));
             }
         }
     }
-    let guided_walls = if walls == Walls::Across {
-        Walls::Free
-    } else {
-        walls
-    };
-    let mut solved = guided(&made.base, surface, options, guided_walls, progress)?;
-    solved.report.iterations_total += spent;
-    solved.notes.splice(0..0, notes);
-    Ok(Ok(solved))
+    Ok(Ok(guided(&made.base, surface, options, walls, progress)?))
 }
 
 /// Solves a designer's base mesh on `surface` (`None`: the base mesh itself) with its walls as
@@ -357,9 +361,7 @@ pub fn solve_base(
     let start = Instant::now();
     let surface_mesh = surface.unwrap_or(base);
     let model_surface = Surface::from_mesh(surface_mesh)?;
-    let mut notes = Vec::new();
-    let mut spent = 0;
-    let mut result_walls = walls;
+    let mut not_clean = None;
     if walls == Walls::Across {
         let keep_cells = AcrossOptions {
             max_drops: 0,
@@ -375,15 +377,10 @@ pub fn solve_base(
         )? {
             Ok(mut solved) => {
                 solved.report.seconds = start.elapsed().as_secs_f64();
+                solved.report.notes = solved.notes.clone();
                 return Ok(solved);
             }
-            Err((why, iterations)) => {
-                notes.push(format!(
-                    "{why}; this is the guided projection (--walls free)"
-                ));
-                spent = iterations;
-                result_walls = Walls::Free;
-            }
+            Err(e) => not_clean = Some(e),
         }
     }
     let mut prescribed = options.clone();
@@ -412,19 +409,64 @@ pub fn solve_base(
     })?;
     let measures = measure(&optimized.honeycomb, &model_surface);
     let mut report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
-    report.walls = result_walls;
-    report.iterations_total = spent + iterations;
-    Ok(Solved {
+    report.walls = if walls == Walls::Across {
+        Walls::Free
+    } else {
+        walls
+    };
+    report.iterations_total = iterations;
+    let solved = Solved {
         base: base.clone(),
         optimized,
         measures,
         report,
-        notes,
-    })
+        notes: Vec::new(),
+    };
+    let mut solved = match not_clean {
+        Some(not_clean) => not_clean.or_better(solved),
+        None => solved,
+    };
+    solved.report.seconds = start.elapsed().as_secs_f64();
+    solved.report.notes = solved.notes.clone();
+    Ok(solved)
 }
 
-/// Walls across S on `base`: the solved honeycomb, or why it is none and the iterations spent.
-#[allow(clippy::type_complexity)]
+/// Walls across S that are no clean honeycomb: why, the iterations that took, and the result
+/// itself when it still meets the honeycomb tolerances (kept if nothing better comes).
+struct NotClean {
+    why: String,
+    iterations: usize,
+    honeycomb: Option<Solved>,
+}
+
+impl NotClean {
+    /// The better of `solved` (the guided projection) and these walls across: the guided
+    /// projection unless it is no honeycomb and these are (a note says so).
+    fn or_better(self, mut solved: Solved) -> Solved {
+        match self.honeycomb {
+            Some(mut across) if !solved.report.honeycomb => {
+                across.report.iterations_total += solved.report.iterations_total;
+                across.notes.push(format!(
+                    "{}; the guided projection gave no honeycomb either (omega_max {} deg), so \
+                     these are the walls across S as they came",
+                    self.why,
+                    rounded(solved.measures.omega_max_deg, 3)
+                ));
+                across
+            }
+            _ => {
+                solved.report.iterations_total += self.iterations;
+                solved.notes.insert(
+                    0,
+                    format!("{}; this is the guided projection (--walls free)", self.why),
+                );
+                solved
+            }
+        }
+    }
+}
+
+/// Walls across S on `base`: the clean honeycomb, or why there is none.
 fn across_or_none(
     base: &PolyMesh,
     surface: &PolyMesh,
@@ -432,7 +474,7 @@ fn across_or_none(
     options: &OptimizeOptions,
     across_options: &AcrossOptions,
     progress: &mut dyn FnMut(Step),
-) -> Result<std::result::Result<Solved, (String, usize)>> {
+) -> Result<std::result::Result<Solved, NotClean>> {
     let start = Instant::now();
     let across_options = AcrossOptions {
         thickness: options.thickness,
@@ -457,9 +499,13 @@ fn across_or_none(
         Ok(across) => across,
         // A sheet the fit left folded flat gives nodes no line to place their vertex on.
         Err(Error::Solver(_)) => {
-            let why = "the node axes fitted to S's normals folded too sharply to place the \
-                       vertices on their walls";
-            return Ok(Err((why.into(), spent)));
+            return Ok(Err(NotClean {
+                why: "the node axes fitted to S's normals folded too sharply to place the \
+                      vertices on their walls"
+                    .into(),
+                iterations: spent,
+                honeycomb: None,
+            }));
         }
         Err(e) => return Err(e),
     };
@@ -473,14 +519,9 @@ fn across_or_none(
         solved.notes.append(&mut notes);
         return Ok(Ok(solved));
     }
-    let m = &across.measures;
     let why = format!(
-        "the node axes fitted to S's normals gave no clean honeycomb here (omega_max {} deg, {} \
-         crossed walls, vertices up to {} edge lengths off S, shortest edge {})",
-        rounded(m.omega_max_deg, 3),
-        m.nonconvex_walls,
-        rounded(m.closeness_max, 3),
-        rounded(m.min_edge_length, 4)
+        "walls across S: {}",
+        flaws(&across.measures, options.min_edge)
     );
     let mut repair_iterations = 0;
     let repaired = repair(&across, surface, model_surface, options, &mut |info| {
@@ -488,25 +529,67 @@ fn across_or_none(
         progress(Step::Iteration("repairing", 1, info))
     })?;
     spent += repair_iterations;
+    let (dropped, field_iterations) = (across.dropped_cells, across.field_iterations);
+    let seconds = start.elapsed().as_secs_f64();
+    let mut solved = across_solved(across, options, seconds);
+    solved.report.iterations_total = spent;
     match repaired {
-        Some((optimized, measures)) => {
-            let (dropped, field_iterations) = (across.dropped_cells, across.field_iterations);
-            let mut solved = across_solved(across, options, start.elapsed().as_secs_f64());
-            solved.report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
+        Some((optimized, measures, thinner)) => {
+            solved.report = Report::new(&optimized, &measures, seconds);
             solved.report.walls = Walls::Across;
             solved.report.iterations_total = spent;
             solved.report.dropped_boundary_cells = Some(dropped);
             solved.report.axis_field_iterations = Some(field_iterations);
             solved.notes.push(format!(
                 "{why}; {repair_iterations} iterations of the guided projection from there \
-                 (without fairness, with a minimum edge length) made it one"
+                 (without fairness, with a minimum edge length) repaired them"
             ));
+            solved.notes.extend(thinner);
             solved.optimized = optimized;
             solved.measures = measures;
             Ok(Ok(solved))
         }
-        None => Ok(Err((format!("{why}, nor did a repair"), spent))),
+        None => {
+            solved.notes.append(&mut notes);
+            let honeycomb = solved.report.honeycomb.then_some(solved);
+            Ok(Err(NotClean {
+                why: format!("{why}, and a repair did not mend them"),
+                iterations: spent,
+                honeycomb,
+            }))
+        }
     }
+}
+
+/// What keeps walls across S from being a clean honeycomb, in words.
+fn flaws(m: &Measures, min_edge: Option<f64>) -> String {
+    let mut flaws = Vec::new();
+    if m.omega_max_deg > CLEAN_OMEGA_DEG {
+        flaws.push(format!(
+            "a node {} degrees off 120",
+            rounded(m.omega_max_deg, 3)
+        ));
+    }
+    if m.delta_max > CLEAN_DELTA {
+        flaws.push(format!("a wall {} off planar", rounded(m.delta_max, 3)));
+    }
+    if m.nonconvex_walls > 0 {
+        let n = m.nonconvex_walls;
+        flaws.push(format!("{n} crossed wall{}", if n == 1 { "" } else { "s" }));
+    }
+    if m.closeness_max > ACROSS_CLOSENESS {
+        flaws.push(format!(
+            "a vertex {} edge lengths off S",
+            rounded(m.closeness_max, 3)
+        ));
+    }
+    if min_edge.is_some_and(|l| m.min_edge_length < l) {
+        flaws.push(format!(
+            "an edge {} model units long (shorter than --min-edge)",
+            rounded(m.min_edge_length, 4)
+        ));
+    }
+    flaws.join(", ")
 }
 
 /// A honeycomb across S is kept when its nodes and walls are exact (omega and delta well
@@ -569,7 +652,7 @@ fn repair(
     model_surface: &Surface,
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(&IterationInfo),
-) -> Result<Option<(Optimized, Measures)>> {
+) -> Result<Option<(Optimized, Measures, Option<String>)>> {
     let h = &across.honeycomb;
     let mut repair = options.clone();
     repair.initial_normals = Some((0..h.edges.len()).map(|e| h.wall_normal(e)).collect());
@@ -586,11 +669,12 @@ fn repair(
     };
     let mut measures = measure(&optimized.honeycomb, model_surface);
     let mut optimized = optimized;
+    let mut thinner = None;
     if options.thickness.is_none() {
         let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
-        uncross(h, conn, &mut measures, model_surface);
+        thinner = uncross(h, conn, &mut measures, model_surface);
     }
-    Ok(is_clean(&measures, options.min_edge).then_some((optimized, measures)))
+    Ok(is_clean(&measures, options.min_edge).then_some((optimized, measures, thinner)))
 }
 
 /// The plan-view base mesh of uniform walls: S seen along its mean normal or the direction
@@ -629,7 +713,9 @@ fn plan_view(
         Ok(made) => Ok(made),
         Err(e) if view.is_none() => {
             notes.push(format!(
-                "--flatten project: {e}; this is the ARAP grid, whose axes are not parallel"
+                "seen along its mean normal: {}; this is the ARAP grid and the guided \
+                 projection (--walls free), whose axes are not parallel",
+                message(&e)
             ));
             init(
                 surface,
@@ -687,13 +773,13 @@ fn curved_at_most(surface: &Surface, edge: f64, cells: f64, why: &str) -> Result
     if units.positive + units.negative <= MAX_CURVATURE_PER_CELL * cells {
         return Ok(());
     }
-    Err(Error::Mesh(format!(
+    Err(Error::Unsuited(format!(
         "too curved for a honeycomb of cells of one size: at the scale of a cell (edge {}) S \
          curves by {:.0} units of 60 degrees like a dome and {:.0} like a saddle, and a \
          hexagonal lattice of even spacing absorbs one unit only with a pentagon or a heptagon \
-         (about {:.0} cells here: at most {}% of them); {why}. Split S into nearly developable \
-         pieces (a roof, a vault), or use --method field for a mesh with pentagons and \
-         heptagons and --walls free",
+         (about {:.0} cells here: at most {}% of them); {why}. What would work: S split into \
+         pieces that each curve less (nearly developable ones, such as a roof or a vault), or \
+         a surface smoother at this cell size",
         rounded(edge, 4),
         units.positive,
         units.negative,
@@ -701,7 +787,6 @@ fn curved_at_most(surface: &Surface, edge: f64, cells: f64, why: &str) -> Result
         (100.0 * MAX_CURVATURE_PER_CELL).round()
     )))
 }
-
 /// Walls across S as a solved honeycomb with its report.
 fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Solved {
     let frame = Frame::of(&across.base);
@@ -721,6 +806,8 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
         wall_normals: WallNormals::CellPoints,
     };
     let mut report = Report::new(&optimized, &across.measures, seconds);
+    // The conditions hold by construction once the sheet has unit walls.
+    report.converged = across.field_converged;
     report.walls = Walls::Across;
     report.iterations_total = optimized.solve.iterations;
     report.dropped_boundary_cells = Some(across.dropped_cells);
@@ -728,8 +815,14 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
     let mut notes = Vec::new();
     if across.dropped_cells > 0 {
         notes.push(format!(
-            "{} boundary cells whose walls the fitted axes crossed or turned over were              dropped; initial.obj is the mesh without them",
-            across.dropped_cells
+            "{} whose walls the fitted axes crossed or turned over {} dropped; initial.obj \
+             is the mesh without them",
+            cells(across.dropped_cells, "boundary cell"),
+            if across.dropped_cells == 1 {
+                "was"
+            } else {
+                "were"
+            }
         ));
     }
     Solved {
@@ -773,23 +866,24 @@ fn guided(
     let mut notes = Vec::new();
     if made.per_edge_fallback {
         notes.push(
-            "wall normals as cell points gave no honeycomb; this is the solve with one normal \
-             per edge"
+            "the solve for one point per cell gave no honeycomb; this is the solve for one \
+             normal per wall"
                 .into(),
         );
     }
     if made.second_try {
         notes.push(format!(
-            "the default weights gave no honeycomb; this is the second try, without the \
-             opposite-wall fairness and with every edge at least {} mean edge lengths",
+            "the first try gave no honeycomb; this is the second try, without the fairness that \
+             holds opposite walls parallel and with every edge at least {} mean edge lengths",
             crate::optimize::SECOND_TRY_MIN_EDGE
         ));
     }
     if s.dropped_cells > 0 {
         notes.push(format!(
-            "{} boundary cells that the solve broke (collapsed cap, mirrored node or crossed \
-             wall) were dropped; initial.obj is the mesh without them",
-            s.dropped_cells
+            "{} that the solve broke (collapsed cap, mirrored node or crossed wall) {} \
+             dropped; initial.obj is the mesh without them",
+            cells(s.dropped_cells, "boundary cell"),
+            if s.dropped_cells == 1 { "was" } else { "were" }
         ));
     }
     let mut report = Report::new(&s.optimized, &s.measures, start.elapsed().as_secs_f64());
