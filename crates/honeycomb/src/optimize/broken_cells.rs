@@ -10,6 +10,8 @@
 //! that a wall quad crosses itself. Such cells belong to no honeycomb near the start: they are
 //! dropped and the solve starts again from the base mesh without them.
 
+use std::cmp::Reverse;
+
 use super::{optimize, OptimizeOptions, Optimized};
 use crate::error::Result;
 use crate::mesh::{Connectivity, PolyMesh};
@@ -35,7 +37,8 @@ pub const MAX_DROPPED_SHARE: f64 = 0.03;
 /// The cells with a boundary edge that hold a collapsed cap, a broken node or a broken wall
 /// (far from planar, or not convex), or that border an inner cell holding one (sorted). Inner
 /// cells are never listed: dropping them would open holes; nor is a cell whose loss would cut
-/// the rest in pieces (a neck one cell wide).
+/// a lobe off the rest (a neck one cell wide), while the few cells of a peninsula it would cut
+/// off are listed with it.
 pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -> Vec<usize> {
     let limit = COLLAPSED_CAP * m.mean_edge_length;
     let length = |e: usize| {
@@ -76,42 +79,63 @@ pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -
     keeping_one_piece(conn, h.base.faces.len(), &candidates)
 }
 
+/// At most this share of the cells may be cut off with a broken cell (a peninsula at the
+/// boundary, not a lobe of the structure); they go with it.
+const CUT_OFF_SHARE: f64 = 0.01;
+
 /// Of `candidates` (sorted), those that can go in turn while the rest of the cells stays one
-/// piece (cells joined through shared edges).
+/// piece (cells joined through shared edges), with the few cells a candidate would cut off
+/// (sorted).
 fn keeping_one_piece(conn: &Connectivity, cells: usize, candidates: &[usize]) -> Vec<usize> {
+    let cut_off_limit = (CUT_OFF_SHARE * cells as f64).floor() as usize;
     let mut gone = vec![false; cells];
-    let mut dropped = Vec::new();
     for &f in candidates {
+        if gone[f] {
+            continue;
+        }
         gone[f] = true;
-        if is_one_piece(conn, &gone) {
-            dropped.push(f);
+        let mut pieces = pieces(conn, &gone);
+        // The largest piece stays (the first of equals); the others are cut off.
+        let largest = (0..pieces.len()).max_by_key(|&k| (pieces[k].len(), Reverse(k)));
+        if let Some(k) = largest {
+            pieces.swap_remove(k);
+        }
+        let cut_off: Vec<usize> = pieces.into_iter().flatten().collect();
+        if cut_off.len() <= cut_off_limit {
+            for g in cut_off {
+                gone[g] = true;
+            }
         } else {
             gone[f] = false;
         }
     }
-    dropped
+    (0..cells).filter(|&f| gone[f]).collect()
 }
 
-/// Whether the cells not `gone` form one piece through shared edges.
-fn is_one_piece(conn: &Connectivity, gone: &[bool]) -> bool {
-    let Some(root) = gone.iter().position(|&g| !g) else {
-        return true;
-    };
+/// The cells not `gone` gathered into pieces joined through shared edges.
+fn pieces(conn: &Connectivity, gone: &[bool]) -> Vec<Vec<usize>> {
     let mut seen = gone.to_vec();
-    seen[root] = true;
-    let (mut stack, mut reached) = (vec![root], 1);
-    while let Some(f) = stack.pop() {
-        for &e in &conn.face_edges[f] {
-            for g in conn.edge_faces[e].iter().flatten().copied() {
-                if !seen[g] {
-                    seen[g] = true;
-                    reached += 1;
-                    stack.push(g);
+    let mut pieces: Vec<Vec<usize>> = Vec::new();
+    for root in 0..gone.len() {
+        if seen[root] {
+            continue;
+        }
+        seen[root] = true;
+        let (mut stack, mut piece) = (vec![root], vec![root]);
+        while let Some(f) = stack.pop() {
+            for &e in &conn.face_edges[f] {
+                for g in conn.edge_faces[e].iter().flatten().copied() {
+                    if !seen[g] {
+                        seen[g] = true;
+                        piece.push(g);
+                        stack.push(g);
+                    }
                 }
             }
         }
+        pieces.push(piece);
     }
-    reached == gone.iter().filter(|&&g| !g).count()
+    pieces
 }
 
 /// The vertices of `mesh` that some face outside `drop` (sorted) uses, in order: vertex `k` of
@@ -304,7 +328,7 @@ mod piece_tests {
         let halves = without_cells(&disk, &cut);
         let conn = Connectivity::build(&halves).unwrap();
         let cells = halves.faces.len();
-        assert!(is_one_piece(&conn, &vec![false; cells]));
+        assert_eq!(pieces(&conn, &vec![false; cells]).len(), 1);
         let bridge = (0..cells)
             .find(|&f| centre(&halves, f).norm() < 0.5)
             .unwrap();
@@ -314,5 +338,37 @@ mod piece_tests {
         let mut candidates = vec![bridge, far];
         candidates.sort();
         assert_eq!(keeping_one_piece(&conn, cells, &candidates), vec![far]);
+    }
+
+    /// A boundary cell held by one neighbour only: that neighbour goes, and the cell with it.
+    #[test]
+    fn a_peninsula_goes_with_its_neck() {
+        let disk = hex_disk(12.0);
+        let conn = Connectivity::build(&disk).unwrap();
+        let neighbours = |f: usize| -> Vec<usize> {
+            let mut n: Vec<usize> = conn.face_edges[f]
+                .iter()
+                .flat_map(|&e| conn.edge_faces[e].iter().flatten().copied())
+                .filter(|&g| g != f)
+                .collect();
+            n.sort();
+            n.dedup();
+            n
+        };
+        let tip = (0..disk.faces.len())
+            .max_by(|&a, &b| disk.face_centroid(a).x.total_cmp(&disk.face_centroid(b).x))
+            .unwrap();
+        let around = neighbours(tip);
+        let (neck, moat) = (around[0], &around[1..]);
+        let island = without_cells(&disk, moat);
+        let conn = Connectivity::build(&island).unwrap();
+        let cells = island.faces.len();
+        assert!(cells >= 100, "{cells} cells: 1% of them must hold the tip");
+        assert_eq!(pieces(&conn, &vec![false; cells]).len(), 1);
+        // Indices of the island: cells after a dropped one shift down.
+        let index = |f: usize| f - moat.iter().filter(|&&g| g < f).count();
+        let mut expected = vec![index(neck), index(tip)];
+        expected.sort();
+        assert_eq!(keeping_one_piece(&conn, cells, &[index(neck)]), expected);
     }
 }

@@ -337,12 +337,26 @@ fn solve_made(
             Ok(solved) => return Ok(Ok(solved)),
             Err(not_clean) if !fallback => return Ok(Err((not_clean.why, not_clean.iterations))),
             Err(not_clean) => {
-                let solved = guided(&made.base, surface, options, Walls::Free, progress)?;
+                let solved = guided(
+                    &made.base,
+                    surface,
+                    model_surface,
+                    options,
+                    Walls::Free,
+                    progress,
+                )?;
                 return Ok(Ok(not_clean.or_better(solved)));
             }
         }
     }
-    Ok(Ok(guided(&made.base, surface, options, walls, progress)?))
+    Ok(Ok(guided(
+        &made.base,
+        surface,
+        model_surface,
+        options,
+        walls,
+        progress,
+    )?))
 }
 
 /// Solves a designer's base mesh on `surface` (`None`: the base mesh itself) with its walls as
@@ -835,10 +849,12 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
 }
 
 /// The guided projection of a made mesh, with its retries (dropped boundary cells, a second
-/// try without fairness, normals per edge).
+/// try without fairness, normals per edge), made thinner where wall quads cross at the default
+/// thickness.
 fn guided(
     base: &PolyMesh,
     surface: &PolyMesh,
+    model_surface: &Surface,
     options: &PipelineOptions,
     walls: Walls,
     progress: &mut dyn FnMut(Step),
@@ -862,8 +878,12 @@ fn guided(
             progress(Step::Iteration(name, attempt.solve, info))
         },
     )?;
-    let s = made.settled;
+    let mut s = made.settled;
     let mut notes = Vec::new();
+    if options.optimize.thickness.is_none() {
+        let (h, conn) = (&mut s.optimized.honeycomb, &s.optimized.connectivity);
+        notes.extend(uncross(h, conn, &mut s.measures, model_surface));
+    }
     if made.per_edge_fallback {
         notes.push(
             "the solve for one point per cell gave no honeycomb; this is the solve for one \
