@@ -47,9 +47,8 @@ impl MadeMeshResult {
 /// breaks. When that gives no honeycomb and `second_try` allows it, once more with
 /// [`OptimizeOptions::second_try`] (no fairness, a minimum edge length, more iterations). When
 /// the wall normals were left to `Auto` and chose cell points, and neither try is a honeycomb,
-/// both again with normals per edge, without the cells the first round dropped: the soft
-/// normalization of cell points lets a wall turn over now and then (a field mesh on a saddle
-/// kept mirrored nodes that per edge did not).
+/// both again with normals per edge: the soft normalization of cell points lets a wall turn
+/// over now and then (a field mesh on a saddle kept mirrored nodes that per edge did not).
 /// The first honeycomb is kept, else the result with the smallest omega_max.
 pub fn optimize_made_mesh(
     base: &PolyMesh,
@@ -70,17 +69,7 @@ pub fn optimize_made_mesh(
         ..options.clone()
     }
     .resolved();
-    // Without the cells the first round dropped: they broke there and would break again,
-    // and finding them costs a probe solve each.
-    let mut again = tries(
-        &first.settled.base,
-        surface,
-        &per_edge,
-        second_try,
-        true,
-        progress,
-    )?;
-    again.settled.dropped_cells += first.settled.dropped_cells;
+    let again = tries(base, surface, &per_edge, second_try, true, progress)?;
     Ok(first.better(again))
 }
 
