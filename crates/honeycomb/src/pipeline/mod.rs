@@ -461,10 +461,10 @@ impl NotClean {
             Some(mut across) if !solved.report.honeycomb => {
                 across.report.iterations_total += solved.report.iterations_total;
                 across.notes.push(format!(
-                    "{}; the guided projection gave no honeycomb either (omega_max {} deg), so \
-                     these are the walls across S as they came",
+                    "{}; the guided projection gave no honeycomb either ({}), so these are the \
+                     walls across S as they came",
                     self.why,
-                    rounded(solved.measures.omega_max_deg, 3)
+                    flaws(&solved.measures, None)
                 ));
                 across
             }
