@@ -201,7 +201,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     }
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
-    check_solve_cells(init.size, &surface).map_err(|e| name_file(&args.surface, e))?;
+    check_solve_cells(&init, &surface).map_err(|e| name_file(&args.surface, e))?;
     let out = OutputDir::begin(&args.output, &[args.surface.as_path()])?;
     let options = PipelineOptions {
         init,

@@ -829,3 +829,95 @@ fn a_surface_far_from_the_base_mesh() {
         ],
     );
 }
+
+/// The demo's saddle surface (area 566 model units squared) written into `dir`.
+fn saddle_surface(dir: &TempDir) -> PathBuf {
+    let path = dir.join("saddle.obj");
+    let (_, surface) =
+        honeycomb::generate::lifted_hex_patch(honeycomb::generate::Shape::Saddle, 200);
+    write_mesh(&path, &surface).expect("write the surface");
+    path
+}
+
+/// `honeycomb init SURFACE --edge-length EDGE --method METHOD -q -o DIR/base.obj`.
+fn init_at(dir: &TempDir, surface: &Path, edge: &str, method: &str) -> std::process::Output {
+    let base = dir.join("base.obj");
+    let _ = std::fs::remove_file(&base);
+    common::run_bounded(
+        [
+            "init".as_ref(),
+            surface.as_os_str(),
+            "--edge-length".as_ref(),
+            edge.as_ref(),
+            "--method".as_ref(),
+            method.as_ref(),
+            "-q".as_ref(),
+            "-o".as_ref(),
+            base.as_os_str(),
+        ],
+        60,
+    )
+}
+
+/// The top of the range of edge lengths an `init` error line offers (`... to X model units`).
+fn offered_top(line: &str) -> String {
+    let (head, _) = line
+        .split_once(" model units")
+        .unwrap_or_else(|| panic!("no range in {line}"));
+    let (_, top) = head
+        .rsplit_once(" to ")
+        .unwrap_or_else(|| panic!("no range in {line}"));
+    top.to_string()
+}
+
+#[test]
+fn the_edge_lengths_offered_are_the_ones_accepted() {
+    // The range offered went up to the diagonal of the bounding box (32.08 here), and edges
+    // from about 8 up were refused all the same ("no cell of edge length 9.0000 fits").
+    let dir = TempDir::new("the_edge_lengths_offered_are_the_ones_accepted");
+    let surface = saddle_surface(&dir);
+    for method in ["flatten", "field"] {
+        let by = format!("(the longest that lays cells by the {method} method)");
+        let line = assert_clean_failure(
+            &init_at(&dir, &surface, "1000", method),
+            &[
+                "--edge-length 1000:",
+                "choose smaller cells, 0.0104407 to ",
+                &by,
+            ],
+            None,
+        );
+        let top = offered_top(&line);
+        let value: f64 = top.parse().unwrap_or_else(|_| panic!("{top} in {line}"));
+        assert!(value > 1.0 && value < 32.0, "{line}");
+        // The same range whichever way the edge length is out of it.
+        let line = assert_clean_failure(
+            &init_at(&dir, &surface, "1e-300", method),
+            &["--edge-length 1e-300:", "choose larger cells"],
+            None,
+        );
+        assert_eq!(offered_top(&line), top, "{line}");
+        // Its top end lays a mesh.
+        let output = init_at(&dir, &surface, &top, method);
+        common::assert_success(
+            &output,
+            &format!("init --edge-length {top} --method {method}"),
+        );
+        assert!(dir.join("base.obj").is_file());
+        // The next value of as many digits above it is refused, naming the option.
+        let unit = 10f64.powi(value.log10().floor() as i32 - 3);
+        let above = honeycomb::error::rounded(value + unit, 4);
+        let shown = format!("--edge-length {above}:");
+        let line = assert_clean_failure(
+            &init_at(&dir, &surface, &above, method),
+            &[
+                &shown,
+                "no cell of that size fits",
+                "choose smaller cells",
+                &by,
+            ],
+            None,
+        );
+        assert_eq!(offered_top(&line), top, "{line}");
+    }
+}

@@ -5,7 +5,7 @@
 //! picture's in [`crate::render::MAX_WIDTH`].
 
 use crate::error::{Error, Result};
-use crate::init::{hexagon_area, CellSize};
+use crate::init::{hexagon_area, CellSize, InitOptions};
 use crate::mesh::PolyMesh;
 
 /// Base-mesh vertices one solve takes at most: its factorization's fill grows faster than the
@@ -35,11 +35,12 @@ pub fn check_solve_vertices(option: &str, vertices: usize) -> Result<()> {
     Ok(())
 }
 
-/// The cells of `size` that a solve will take: `--cells` as asked, `--edge-length` on
-/// `surface`'s area (and within the lattice's own range there).
-pub fn check_solve_cells(size: CellSize, surface: &PolyMesh) -> Result<()> {
-    crate::init::check_edge_length(surface, size)?;
-    let (option, cells) = match size {
+/// The cells of `init`'s size that a solve will take: `--cells` as asked, `--edge-length` on
+/// `surface`'s area (and within the lattice's own range there,
+/// [`crate::init::check_edge_length`]).
+pub fn check_solve_cells(init: &InitOptions, surface: &PolyMesh) -> Result<()> {
+    crate::init::check_edge_length(surface, init)?;
+    let (option, cells) = match init.size {
         CellSize::Cells(n) => (format!("--cells {n}"), n as f64),
         CellSize::EdgeLength(l) => (
             format!("--edge-length {}", crate::error::rounded(l, 6)),
@@ -48,8 +49,9 @@ pub fn check_solve_cells(size: CellSize, surface: &PolyMesh) -> Result<()> {
     };
     if cells > MAX_SOLVE_CELLS as f64 {
         return Err(Error::Parameter(format!(
-            "{option}: about {cells:.0} cells to solve; expected at most {MAX_SOLVE_CELLS} \
-             (a solve takes at most {MAX_SOLVE_VERTICES} vertices)"
+            "{option}: {} to solve; expected at most {MAX_SOLVE_CELLS} (a solve takes at \
+             most {MAX_SOLVE_VERTICES} vertices)",
+            crate::error::about(cells, "cells")
         )));
     }
     Ok(())
@@ -81,6 +83,7 @@ mod tests {
 
     #[test]
     fn solves_beyond_the_bounds_are_refused_naming_the_option() {
+        let sized = InitOptions::new;
         let e = check_solve_vertices("--vertices 2000000", 2_000_000).unwrap_err();
         assert!(
             e.to_string()
@@ -90,21 +93,21 @@ mod tests {
         check_solve_vertices("--vertices 1500", 1500).unwrap();
         // A unit square: 1e-3 edges make about 385k cells.
         let square = PolyMesh::unit_square();
-        let e = check_solve_cells(CellSize::EdgeLength(1e-3), &square).unwrap_err();
+        let e = check_solve_cells(&sized(CellSize::EdgeLength(1e-3)), &square).unwrap_err();
         assert!(
             e.to_string()
                 .contains("--edge-length 0.001: about 384900 cells"),
             "{e}"
         );
-        let e = check_solve_cells(CellSize::Cells(1_000_000), &square).unwrap_err();
+        let e = check_solve_cells(&sized(CellSize::Cells(1_000_000)), &square).unwrap_err();
         assert!(
             e.to_string()
                 .contains("--cells 1000000: about 1000000 cells"),
             "{e}"
         );
-        check_solve_cells(CellSize::Cells(150_000), &square).unwrap();
-        check_solve_cells(CellSize::EdgeLength(1.0), &square).unwrap();
-        let e = check_solve_cells(CellSize::EdgeLength(1e308), &square).unwrap_err();
+        check_solve_cells(&sized(CellSize::Cells(150_000)), &square).unwrap();
+        check_solve_cells(&sized(CellSize::EdgeLength(0.5)), &square).unwrap();
+        let e = check_solve_cells(&sized(CellSize::EdgeLength(1e308)), &square).unwrap_err();
         assert!(
             e.to_string()
                 .contains("--edge-length 1e308: no cell of that size fits"),
