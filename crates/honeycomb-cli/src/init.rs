@@ -1,6 +1,6 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs};
+use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs, LENGTH_FLAGS};
 use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
@@ -211,6 +211,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
         // The second try only when the fairness is not the user's choice.
         second_try: args.opts.w_fair.is_none(),
         across: AcrossOptions::default(),
+        length_labels: LENGTH_FLAGS,
     };
     let mut bar = IterationBar::new(output, options.optimize.solver.max_iterations);
     let spinner = std::cell::RefCell::new(None::<Spinner>);

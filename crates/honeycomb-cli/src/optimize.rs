@@ -389,6 +389,10 @@ fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
     honeycomb::geometry::parse_direction(s)
 }
 
+/// The flags of the thickness, the minimum edge length and the depth, as the library's
+/// checks of them name them ([`OptimizeOptions::validate_as`]).
+pub const LENGTH_FLAGS: [&str; 3] = ["--thickness", "--min-edge", "--depth"];
+
 /// Reads a mesh, passing the reader's warnings to stderr.
 pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
     let loaded = read_mesh(path)?;
@@ -415,7 +419,7 @@ pub fn solve_options(
 ) -> Result<Prepared> {
     let mut options = args.options()?;
     args.add_axes(&mut options, base, surface)?;
-    options.validate(base)?;
+    options.validate_as(base, LENGTH_FLAGS)?;
     let sun_path = match &args.sun_path {
         Some(path) => read_directions(path)?,
         None => Vec::new(),

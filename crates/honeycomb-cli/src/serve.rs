@@ -104,7 +104,13 @@ pub fn run(args: Args) -> Result<()> {
     let output = Output::from_flags(args.quiet, args.json);
     // Making the base mesh and the first solve can take seconds on a large surface.
     let spinner = Spinner::new(output, "making the honeycomb to edit");
-    let server = start(&source, options);
+    let server = start(&source, options).map_err(|e| match e {
+        // The library's bound on the thickness, which the user gave as --thickness.
+        Error::Parameter(m) if args.thickness.is_some() && m.starts_with("thickness ") => {
+            Error::Parameter(format!("--{m}"))
+        }
+        e => e,
+    });
     spinner.finish();
     let server = match &args.input {
         Some(path) => server.map_err(|e| name_file(path, e))?,

@@ -434,20 +434,21 @@ fn a_coordinate_beyond_computing_range() {
 fn lengths_far_beyond_the_cells() {
     // The disk's mean edge length is 1: these ask for a structure a million cells deep.
     let dir = TempDir::new("lengths_far_beyond_the_cells");
+    // Named by the flag the user typed, not the library's name for it.
     optimize_with_fails(
         &dir,
         &["--thickness", "1e308"],
-        &["thickness 1e308", "mean edge length"],
+        &["--thickness 1e308", "mean edge length"],
     );
     optimize_with_fails(
         &dir,
         &["--min-edge", "1e308"],
-        &["minimum edge length 1e308", "mean edge length"],
+        &["--min-edge 1e308", "mean edge length"],
     );
     optimize_with_fails(
         &dir,
         &["--parallel", "--depth", "1e6"],
-        &["depth 1000000", "mean edge length"],
+        &["--depth 1000000", "mean edge length"],
     );
     optimize_with_fails(
         &dir,
@@ -919,5 +920,34 @@ fn the_edge_lengths_offered_are_the_ones_accepted() {
             None,
         );
         assert_eq!(offered_top(&line), top, "{line}");
+    }
+}
+
+#[test]
+fn lengths_the_pipeline_is_given_are_named_by_their_flags() {
+    let dir = TempDir::new("lengths_the_pipeline_is_given_are_named_by_their_flags");
+    let surface = saddle_surface(&dir);
+    let out = dir.join("out");
+    for (extra, shown) in [
+        (
+            &["--min-edge", "1e308"][..],
+            "--min-edge 1e308: more than 10 times",
+        ),
+        (
+            &["--thickness", "1e30"],
+            "--thickness 1e30: more than 1000 times",
+        ),
+    ] {
+        let mut args: Vec<std::ffi::OsString> = vec![
+            "pipeline".into(),
+            surface.clone().into(),
+            "--cells".into(),
+            "100".into(),
+        ];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["-o".into(), out.clone().into()]);
+        let line = assert_clean_failure(&common::run_bounded(&args, 120), &[shown], Some(&out));
+        assert!(!line.contains("minimum edge length"), "{line}");
+        assert!(!out.exists());
     }
 }

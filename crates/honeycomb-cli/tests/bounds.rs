@@ -153,7 +153,7 @@ fn the_editor_bounds_its_parameters_as_the_cli_does() {
     };
     // Every offset coordinate was sent as null, and the save could not be loaded.
     for thickness in ["1e308", "1e30"] {
-        let shown = format!("thickness {thickness}: more than 1000 times");
+        let shown = format!("--thickness {thickness}: more than 1000 times");
         refused(
             &serve(&[&"--thickness", &thickness]),
             &[&shown],
