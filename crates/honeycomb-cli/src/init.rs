@@ -146,13 +146,13 @@ fn print_report(made: &Initialized, output: Output, written: &Path) -> Result<()
                 None => "field-aligned".to_string(),
             };
             println!(
-                "{} cells ({} interior, {:.1}% hexagons), {} vertices; edge length {:.4} (cv \
+                "{} cells ({} interior, {:.1}% hexagons), {} vertices; edge length {} (cv \
                  {:.3}); {how}; {:.2} s",
                 r.cells,
                 r.interior_cells,
                 100.0 * r.interior_hexagon_share,
                 r.vertices,
-                r.edge_length_mean,
+                honeycomb::error::rounded(r.edge_length_mean, 4),
                 r.edge_length_cv,
                 r.seconds
             );

@@ -2,7 +2,7 @@
 
 use crate::progress::{IterationBar, Output};
 use honeycomb::analysis::{extruded_along_normals, read_directions, shading_report};
-use honeycomb::error::short_number;
+use honeycomb::error::{rounded, short_number};
 use honeycomb::geometry::read_axes;
 use honeycomb::mesh::{
     check_base_near_surface, nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh,
@@ -611,12 +611,13 @@ pub fn finish(
                 n => {
                     let limit = thickest_uncrossed(&optimized.honeycomb);
                     format!(
-                        "; {n} wall quads are not convex at thickness {:.4} (the node axes at \
+                        "; {n} wall quads are not convex at thickness {} (the node axes at \
                          their ends lean together or apart across the wall){}",
-                        report.thickness,
+                        rounded(report.thickness, 4),
                         if limit < report.thickness {
                             format!(
-                                ": --thickness below {limit:.4} uncrosses those leaning together"
+                                ": --thickness below {} uncrosses those leaning together",
+                                rounded(limit, 4)
                             )
                         } else {
                             String::new()

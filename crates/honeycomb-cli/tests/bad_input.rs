@@ -924,6 +924,57 @@ fn the_edge_lengths_offered_are_the_ones_accepted() {
 }
 
 #[test]
+fn numbers_in_messages_are_readable_at_every_scale() {
+    // The base mesh's mean edge length was shown as 0.0000; a count of cells as inf.
+    let dir = TempDir::new("numbers_in_messages_are_readable_at_every_scale");
+    let (vertices, faces) = hexagon_pair();
+    let small: Vec<[f64; 3]> = vertices.iter().map(|p| p.map(|c| c * 1e-5)).collect();
+    let base = dir.write("small.obj", &obj(&small, &faces));
+    let out = dir.join("out");
+    for (extra, shown) in [
+        (
+            &["--thickness", "1"][..],
+            "--thickness 1: more than 1000 times",
+        ),
+        (&["--min-edge", "1"], "--min-edge 1: more than 10 times"),
+        (
+            &["--parallel", "--depth", "1"],
+            "--depth 1: more than 1000 times",
+        ),
+    ] {
+        let mut args: Vec<std::ffi::OsString> = vec!["optimize".into(), base.clone().into()];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["-o".into(), out.clone().into()]);
+        let line = assert_clean_failure(
+            &run(&args),
+            &[shown, "the base mesh's mean edge length 1e-5;"],
+            Some(&out),
+        );
+        assert!(!line.contains("0.0000"), "{line}");
+    }
+    let surface = saddle_surface(&dir);
+    for method in ["flatten", "field"] {
+        let line = assert_clean_failure(
+            &init_at(&dir, &surface, "1e-300", method),
+            &[
+                "--edge-length 1e-300: more cells than can be counted",
+                "on a surface of area 566.426",
+                "expected at most 2000000",
+            ],
+            None,
+        );
+        assert!(!line.contains("inf"), "{line}");
+    }
+    // A size inside the range the lattice misses: its edge length and area in a few digits.
+    let line = assert_clean_failure(
+        &init_at(&dir, &surface, "8", "field"),
+        &["no whole cell of edge length 8 fits on the surface (area 566.426, about 3.4 cells)"],
+        None,
+    );
+    assert!(!line.contains("8.0000"), "{line}");
+}
+
+#[test]
 fn lengths_the_pipeline_is_given_are_named_by_their_flags() {
     let dir = TempDir::new("lengths_the_pipeline_is_given_are_named_by_their_flags");
     let surface = saddle_surface(&dir);

@@ -513,9 +513,10 @@ fn lay_lattice(
     let fits = area / hexagon_area(edge);
     if fits > MAX_CELLS as f64 {
         return Err(Error::Parameter(format!(
-            "--edge-length {}: about {fits:.0} cells on a surface of area {area:.4}; \
-             expected at most {MAX_CELLS}",
-            rounded(edge, 6)
+            "--edge-length {}: {} on a surface of area {}; expected at most {MAX_CELLS}",
+            rounded(edge, 6),
+            about(fits, "cells"),
+            rounded(area, 6)
         )));
     }
     let angle = lattice_angle(options, vertices, triangles, &flat.points)?;
@@ -531,8 +532,9 @@ fn lay_lattice(
     // A NaN comes from an extent that overflows.
     if covering.is_nan() || covering > 10.0 * MAX_CELLS as f64 {
         return Err(Error::Mesh(format!(
-            "the flattened surface spreads over about {covering:.0} cells of its bounding box \
-             for {fits:.0} on the surface: too thin for a grid of this size"
+            "the flattened surface spreads over {} of its bounding box for {fits:.0} on \
+             the surface: too thin for a grid of this size",
+            about(covering, "cells"),
         )));
     }
     let locator = Locator::new(&flat.points, triangles);
@@ -546,8 +548,11 @@ fn lay_lattice(
     );
     if placed.is_empty() {
         return Err(Error::Mesh(format!(
-            "no cell of edge length {edge:.4} fits on the surface (area {area:.4}, about \
-             {fits:.1} cells): choose smaller cells"
+            "no cell of edge length {} fits on the surface (area {}, about {} cells): \
+             choose smaller cells",
+            rounded(edge, 6),
+            rounded(area, 6),
+            rounded(fits, 2)
         )));
     }
     // Each corner's position on S: through its triangle, or along its boundary edge.
@@ -575,9 +580,10 @@ fn lay_lattice(
         .collect();
     if unfolded.is_empty() {
         return Err(Error::Mesh(format!(
-            "every one of the {} cells of edge length {edge:.4} straddles a place where the \
+            "every one of the {} cells of edge length {} straddles a place where the \
              flattening overlaps itself; try other --cells or --method field",
-            placed.cells.len()
+            placed.cells.len(),
+            rounded(edge, 6)
         )));
     }
     let cells = largest_component(&unfolded);

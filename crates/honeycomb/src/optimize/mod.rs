@@ -29,7 +29,7 @@ use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
     PrescribedAxes,
 };
-use crate::error::{rounded, short_number, Error, Result};
+use crate::error::{rounded, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::solve::{Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolverOptions};
@@ -123,8 +123,9 @@ pub(crate) fn check_scale(label: &str, length: f64, ratio: f64, edge: f64) -> Re
     if length > ratio * edge {
         return Err(Error::Parameter(format!(
             "{label} {}: more than {ratio} times the base mesh's mean edge length \
-             {edge:.4}; expected a length in the model's units",
-            short_number(length)
+             {}; expected a length in the model's units",
+            rounded(length, 6),
+            rounded(edge, 6)
         )));
     }
     Ok(())
