@@ -975,6 +975,46 @@ fn numbers_in_messages_are_readable_at_every_scale() {
 }
 
 #[test]
+fn a_demo_of_the_largest_size_offered_is_not_refused_for_its_size() {
+    // 300000 was offered, and refused as "the base mesh has 301362 vertices".
+    let dir = TempDir::new("a_demo_of_the_largest_size_offered");
+    let out = dir.join("out");
+    let demo = |extra: &[&str]| {
+        let mut args: Vec<std::ffi::OsString> = vec!["demo".into()];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["-o".into(), out.clone().into()]);
+        common::run_bounded(&args, 60)
+    };
+    for shape in ["saddle", "roof"] {
+        let line = assert_clean_failure(
+            &demo(&["--shape", shape, "--vertices", "300000"]),
+            &[
+                "--vertices 300000: expected 50 to 295000 vertices",
+                "a solve takes at most 300000",
+            ],
+            Some(&out),
+        );
+        assert!(!line.contains("base mesh has"), "{line}");
+        // At the top of the range the mesh is within a solve: only the iterations asked for
+        // (a week's work at that size) are refused.
+        let line = assert_clean_failure(
+            &demo(&[
+                "--shape",
+                shape,
+                "--vertices",
+                "295000",
+                "--iterations",
+                "10000",
+            ]),
+            &["--iterations 10000: on", "vertices expected at most"],
+            Some(&out),
+        );
+        assert!(!line.contains("base mesh has"), "{line}");
+        assert!(!out.exists());
+    }
+}
+
+#[test]
 fn lengths_the_pipeline_is_given_are_named_by_their_flags() {
     let dir = TempDir::new("lengths_the_pipeline_is_given_are_named_by_their_flags");
     let surface = saddle_surface(&dir);

@@ -22,6 +22,27 @@ const VERTICES_PER_CELL: usize = 2;
 /// Cells a solve takes at most.
 pub const MAX_SOLVE_CELLS: usize = MAX_SOLVE_VERTICES / VERTICES_PER_CELL;
 
+/// Vertices a built-in surface's mesh may be asked for (`demo --vertices`, `bench --sizes`):
+/// [`crate::generate::lifted_hex_patch`] comes up to 1% above the count asked (a whole ring
+/// of cells, or a whole row of the roof), and the mesh must stay within a solve's
+/// [`MAX_SOLVE_VERTICES`].
+pub const MAX_GENERATED_VERTICES: usize = 295_000;
+/// And at least: fewer make a patch of a handful of cells.
+pub const MIN_GENERATED_VERTICES: usize = 50;
+
+/// `option` (`--vertices`, `--sizes`) asking for a built-in surface's mesh of `vertices`:
+/// refused outside [`MIN_GENERATED_VERTICES`] to [`MAX_GENERATED_VERTICES`].
+pub fn check_generated_vertices(option: &str, vertices: usize) -> Result<()> {
+    if !(MIN_GENERATED_VERTICES..=MAX_GENERATED_VERTICES).contains(&vertices) {
+        return Err(Error::Parameter(format!(
+            "{option} {vertices}: expected {MIN_GENERATED_VERTICES} to \
+             {MAX_GENERATED_VERTICES} vertices (a built-in surface's mesh comes up to 1% \
+             larger than asked, and a solve takes at most {MAX_SOLVE_VERTICES})"
+        )));
+    }
+    Ok(())
+}
+
 /// `option value` (e.g. `--vertices 5000000`) asks for a solve of `vertices` vertices:
 /// refused beyond [`MAX_SOLVE_VERTICES`].
 pub fn check_solve_vertices(option: &str, vertices: usize) -> Result<()> {
@@ -120,5 +141,37 @@ mod tests {
             "{e}"
         );
         check_solve(&square, 10_000).unwrap();
+    }
+
+    /// The largest mesh of a built-in surface that may be asked for is one a solve takes:
+    /// `demo --vertices 295000` is not refused for its size after all.
+    #[test]
+    fn the_largest_generated_mesh_is_within_a_solve() {
+        use crate::generate::{lifted_hex_patch, Shape};
+        for shape in [
+            Shape::Saddle,
+            Shape::Dome,
+            Shape::Cylinder,
+            Shape::Cone,
+            Shape::Wave,
+            Shape::Roof,
+        ] {
+            let (base, _) = lifted_hex_patch(shape, MAX_GENERATED_VERTICES);
+            let n = base.vertices.len();
+            assert!(n <= MAX_SOLVE_VERTICES, "{shape:?}: {n} vertices");
+            check_solve(&base, 10).unwrap();
+            // Up to 1% over the count asked, as the message says.
+            assert!(
+                n as f64 <= 1.01 * MAX_GENERATED_VERTICES as f64,
+                "{shape:?}: {n}"
+            );
+        }
+        check_generated_vertices("--vertices", MAX_GENERATED_VERTICES).unwrap();
+        check_generated_vertices("--vertices", 50).unwrap();
+        for bad in [49, MAX_GENERATED_VERTICES + 1, 300_000] {
+            let e = check_generated_vertices("--vertices", bad).unwrap_err();
+            let shown = format!("--vertices {bad}: expected 50 to 295000 vertices");
+            assert!(e.to_string().contains(&shown), "{e}");
+        }
     }
 }
