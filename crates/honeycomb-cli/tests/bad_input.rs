@@ -1042,3 +1042,36 @@ fn lengths_the_pipeline_is_given_are_named_by_their_flags() {
         assert!(!out.exists());
     }
 }
+
+#[test]
+fn vector_files_with_a_byte_order_mark_are_read_as_the_meshes_are() {
+    // "`\u{feff}0` is not a number": the mark was kept in the first line of --axes and
+    // --sun-path files, which the mesh readers drop.
+    let dir = TempDir::new("vector_files_with_a_byte_order_mark");
+    let base = valid_base(&dir);
+    let axes = dir.write("axes.txt", &format!("\u{feff}{}", "0 0 1\r".repeat(24)));
+    let sun = dir.write("sun.txt", "\u{feff}0.3 0.1 1\r\n0 0.5 1\r\n");
+    for (name, extra) in [
+        ("axes", vec!["--axes", axes.to_str().unwrap()]),
+        (
+            "sun",
+            vec!["--light", "0,0.2,1", "--sun-path", sun.to_str().unwrap()],
+        ),
+    ] {
+        let out = dir.join(&format!("out-{name}"));
+        let mut args: Vec<std::ffi::OsString> = vec!["optimize".into(), base.clone().into()];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["--iterations", "2", "-q", "-o"].map(Into::into));
+        args.push(out.clone().into());
+        let output = run(&args);
+        let err = stderr(&output);
+        let file = format!("{name}.txt");
+        assert!(
+            !err.contains(&file) && !err.contains("not a number"),
+            "{err}"
+        );
+        // Honeycomb or not after two iterations, the run was made with the file.
+        let report = common::read_json(&common::written(&output, &out), "report.json");
+        assert_eq!(report["vertices"], 24, "{name}: {report}");
+    }
+}
