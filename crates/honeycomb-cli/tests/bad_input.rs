@@ -1075,3 +1075,53 @@ fn vector_files_with_a_byte_order_mark_are_read_as_the_meshes_are() {
         assert_eq!(report["vertices"], 24, "{name}: {report}");
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn a_fifo_as_the_render_surface_is_not_a_regular_file() {
+    let dir = TempDir::new("a_fifo_as_the_render_surface");
+    let fifo = dir.join("surface.obj");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        println!("skipping: mkfifo is not available");
+        return;
+    }
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let picture = dir.join("picture.svg");
+    for color in ["closeness", "axis"] {
+        // It was "does not exist"; opening it would wait for a writer that never comes.
+        let output = common::run_bounded(
+            [
+                "render".as_ref(),
+                structure.as_os_str(),
+                "--color".as_ref(),
+                color.as_ref(),
+                "--surface".as_ref(),
+                fifo.as_os_str(),
+                "-o".as_ref(),
+                picture.as_os_str(),
+            ],
+            30,
+        );
+        let line = assert_clean_failure(
+            &output,
+            &["surface.obj", "not a regular file (a FIFO"],
+            None,
+        );
+        assert!(!line.contains("does not exist"), "{line}");
+        assert!(!picture.exists());
+    }
+    // An absent file still is one that does not exist.
+    let absent = dir.join("absent.obj");
+    let output = run([
+        "render".as_ref(),
+        structure.as_os_str(),
+        "--color".as_ref(),
+        "closeness".as_ref(),
+        "--surface".as_ref(),
+        absent.as_os_str(),
+        "-o".as_ref(),
+        picture.as_os_str(),
+    ]);
+    assert_clean_failure(&output, &["absent.obj does not exist"], None);
+}
