@@ -9,6 +9,7 @@ use honeycomb::generate::hex_disk;
 use honeycomb::geometry::Vec3;
 use honeycomb::mesh::{write_mesh, Connectivity, PolyMesh};
 use honeycomb::structure::{Honeycomb, StructureJson};
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 
 const S: f64 = 0.866_025_403_784_438_6; // sqrt(3) / 2
@@ -1124,4 +1125,40 @@ fn a_fifo_as_the_render_surface_is_not_a_regular_file() {
         picture.as_os_str(),
     ]);
     assert_clean_failure(&output, &["absent.obj does not exist"], None);
+}
+
+#[test]
+fn serve_refuses_a_thickness_it_would_not_use() {
+    // `serve DIR --thickness nan` started the editor as if no thickness had been given.
+    let dir = TempDir::new("serve_refuses_a_thickness_it_would_not_use");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let saves = dir.join("saves");
+    let serve = |extra: &[&std::ffi::OsStr]| {
+        let mut args: Vec<std::ffi::OsString> = vec![
+            "serve".into(),
+            "--port".into(),
+            "0".into(),
+            "--saves".into(),
+            saves.clone().into(),
+        ];
+        args.extend(extra.iter().map(|a| a.to_os_string()));
+        // Accepted, the server would run until killed: the test then fails as a hang.
+        common::run_bounded(&args, 60)
+    };
+    let structure = structure.as_os_str();
+    for (value, shown) in [("nan", "NaN"), ("inf", "inf"), ("-1", "-1"), ("0", "0")] {
+        let keyword = format!("--thickness {shown}: expected a positive length");
+        for input in [&[structure][..], &[]] {
+            let mut extra = input.to_vec();
+            extra.extend([OsStr::new("--thickness"), OsStr::new(value)]);
+            assert_clean_failure(&serve(&extra), &[&keyword], Some(&saves));
+        }
+    }
+    // A structure directory is edited at its own thickness: another one is not used.
+    assert_clean_failure(
+        &serve(&[structure, "--thickness".as_ref(), "0.5".as_ref()]),
+        &["--thickness 0.5", "structure directory"],
+        Some(&saves),
+    );
+    assert!(!saves.exists());
 }
