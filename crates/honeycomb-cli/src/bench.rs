@@ -3,7 +3,7 @@
 //! process's peak memory.
 
 use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::limits::{MAX_SOLVE_VERTICES, MAX_VERTEX_ITERATIONS};
+use honeycomb::limits::{check_generated_vertices, MAX_VERTEX_ITERATIONS};
 use honeycomb::optimize::{optimize, OptimizeOptions};
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
@@ -103,14 +103,8 @@ pub fn run(args: Args) -> Result<()> {
             args.iterations
         )));
     }
-    if let Some(&bad) = args
-        .sizes
-        .iter()
-        .find(|&&s| !(50..=MAX_SOLVE_VERTICES).contains(&s))
-    {
-        return Err(Error::Parameter(format!(
-            "--sizes {bad}: expected 50 to {MAX_SOLVE_VERTICES} vertices"
-        )));
+    for &size in &args.sizes {
+        check_generated_vertices("--sizes", size)?;
     }
     let largest = args.sizes.iter().copied().max().unwrap_or(0);
     if largest * args.iterations > MAX_VERTEX_ITERATIONS {

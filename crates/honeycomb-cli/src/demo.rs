@@ -3,7 +3,7 @@
 use crate::optimize::{optimize_and_write, solve_options, SolveArgs};
 use honeycomb::export::write_json;
 use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::limits::MAX_SOLVE_VERTICES;
+use honeycomb::limits::check_generated_vertices;
 use honeycomb::mesh::write_mesh;
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -30,12 +30,7 @@ pub fn run(args: Args) -> Result<()> {
                 .into(),
         ));
     }
-    if !(50..=MAX_SOLVE_VERTICES).contains(&args.vertices) {
-        return Err(Error::Parameter(format!(
-            "--vertices {}: expected 50 to {MAX_SOLVE_VERTICES}",
-            args.vertices
-        )));
-    }
+    check_generated_vertices("--vertices", args.vertices)?;
     let (base, surface) = lifted_hex_patch(args.shape, args.vertices);
     let prepared = solve_options(&args.opts, &base, Some(&surface))?;
     // The inputs too, so the result can be reproduced with `honeycomb optimize`.

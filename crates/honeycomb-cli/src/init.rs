@@ -1,6 +1,6 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs};
+use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs, LENGTH_FLAGS};
 use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
@@ -146,13 +146,13 @@ fn print_report(made: &Initialized, output: Output, written: &Path) -> Result<()
                 None => "field-aligned".to_string(),
             };
             println!(
-                "{} cells ({} interior, {:.1}% hexagons), {} vertices; edge length {:.4} (cv \
+                "{} cells ({} interior, {:.1}% hexagons), {} vertices; edge length {} (cv \
                  {:.3}); {how}; {:.2} s",
                 r.cells,
                 r.interior_cells,
                 100.0 * r.interior_hexagon_share,
                 r.vertices,
-                r.edge_length_mean,
+                honeycomb::error::rounded(r.edge_length_mean, 4),
                 r.edge_length_cv,
                 r.seconds
             );
@@ -201,7 +201,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     }
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
-    check_solve_cells(init.size, &surface).map_err(|e| name_file(&args.surface, e))?;
+    check_solve_cells(&init, &surface).map_err(|e| name_file(&args.surface, e))?;
     let out = OutputDir::begin(&args.output, &[args.surface.as_path()])?;
     let options = PipelineOptions {
         init,
@@ -211,6 +211,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
         // The second try only when the fairness is not the user's choice.
         second_try: args.opts.w_fair.is_none(),
         across: AcrossOptions::default(),
+        length_labels: LENGTH_FLAGS,
     };
     let mut bar = IterationBar::new(output, options.optimize.solver.max_iterations);
     let spinner = std::cell::RefCell::new(None::<Spinner>);

@@ -2,7 +2,7 @@
 
 use crate::progress::{IterationBar, Output};
 use honeycomb::analysis::{extruded_along_normals, read_directions, shading_report};
-use honeycomb::error::short_number;
+use honeycomb::error::{rounded, short_number};
 use honeycomb::geometry::read_axes;
 use honeycomb::mesh::{
     check_base_near_surface, nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh,
@@ -389,6 +389,10 @@ fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
     honeycomb::geometry::parse_direction(s)
 }
 
+/// The flags of the thickness, the minimum edge length and the depth, as the library's
+/// checks of them name them ([`OptimizeOptions::validate_as`]).
+pub const LENGTH_FLAGS: [&str; 3] = ["--thickness", "--min-edge", "--depth"];
+
 /// Reads a mesh, passing the reader's warnings to stderr.
 pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
     let loaded = read_mesh(path)?;
@@ -415,7 +419,7 @@ pub fn solve_options(
 ) -> Result<Prepared> {
     let mut options = args.options()?;
     args.add_axes(&mut options, base, surface)?;
-    options.validate(base)?;
+    options.validate_as(base, LENGTH_FLAGS)?;
     let sun_path = match &args.sun_path {
         Some(path) => read_directions(path)?,
         None => Vec::new(),
@@ -607,12 +611,13 @@ pub fn finish(
                 n => {
                     let limit = thickest_uncrossed(&optimized.honeycomb);
                     format!(
-                        "; {n} wall quads are not convex at thickness {:.4} (the node axes at \
+                        "; {n} wall quads are not convex at thickness {} (the node axes at \
                          their ends lean together or apart across the wall){}",
-                        report.thickness,
+                        rounded(report.thickness, 4),
                         if limit < report.thickness {
                             format!(
-                                ": --thickness below {limit:.4} uncrosses those leaning together"
+                                ": --thickness below {} uncrosses those leaning together",
+                                rounded(limit, 4)
                             )
                         } else {
                             String::new()

@@ -82,7 +82,9 @@ pub fn run(args: Args) -> Result<()> {
                 .surface
                 .clone()
                 .unwrap_or_else(|| args.dir.join("surface.obj"));
-            if !path.is_file() {
+            // Only an absent file is "does not exist": a FIFO, a device or a directory is
+            // refused by the reader, without being opened.
+            if let Ok(false) = path.try_exists() {
                 return Err(Error::Parameter(format!(
                     "--color {} needs the design surface: {} does not exist (give --surface S)",
                     args.color,

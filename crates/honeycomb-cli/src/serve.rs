@@ -2,6 +2,7 @@
 
 use crate::optimize::name_file;
 use crate::progress::{Output, Spinner};
+use honeycomb::error::short_number;
 use honeycomb::generate::Shape;
 use honeycomb::pipeline::Walls;
 use honeycomb::{Error, Result};
@@ -71,6 +72,21 @@ pub fn run(args: Args) -> Result<()> {
             .map_err(|m: String| Error::Parameter(format!("--walls {m}")))?,
     };
     let surface_input = args.input.as_ref().is_some_and(|p| p.is_file());
+    if let Some(t) = args.thickness {
+        if !t.is_finite() || t <= 0.0 {
+            return Err(Error::Parameter(format!(
+                "--thickness {}: expected a positive length in model units",
+                short_number(t)
+            )));
+        }
+        if args.input.as_ref().is_some_and(|p| p.is_dir()) {
+            return Err(Error::Parameter(format!(
+                "--thickness {}: a structure directory is edited at the thickness it was made \
+                 with (its structure.json); --thickness is for a design surface or the demo",
+                short_number(t)
+            )));
+        }
+    }
     if args.walls.is_some() && !surface_input {
         return Err(Error::Parameter(
             "--walls shapes the honeycomb made on a design surface: give one (serve SURFACE.obj --walls ...); a structure directory and the demo have their walls"
@@ -104,7 +120,13 @@ pub fn run(args: Args) -> Result<()> {
     let output = Output::from_flags(args.quiet, args.json);
     // Making the base mesh and the first solve can take seconds on a large surface.
     let spinner = Spinner::new(output, "making the honeycomb to edit");
-    let server = start(&source, options);
+    let server = start(&source, options).map_err(|e| match e {
+        // The library's bound on the thickness, which the user gave as --thickness.
+        Error::Parameter(m) if args.thickness.is_some() && m.starts_with("thickness ") => {
+            Error::Parameter(format!("--{m}"))
+        }
+        e => e,
+    });
     spinner.finish();
     let server = match &args.input {
         Some(path) => server.map_err(|e| name_file(path, e))?,

@@ -9,6 +9,7 @@ use honeycomb::generate::hex_disk;
 use honeycomb::geometry::Vec3;
 use honeycomb::mesh::{write_mesh, Connectivity, PolyMesh};
 use honeycomb::structure::{Honeycomb, StructureJson};
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 
 const S: f64 = 0.866_025_403_784_438_6; // sqrt(3) / 2
@@ -434,20 +435,21 @@ fn a_coordinate_beyond_computing_range() {
 fn lengths_far_beyond_the_cells() {
     // The disk's mean edge length is 1: these ask for a structure a million cells deep.
     let dir = TempDir::new("lengths_far_beyond_the_cells");
+    // Named by the flag the user typed, not the library's name for it.
     optimize_with_fails(
         &dir,
         &["--thickness", "1e308"],
-        &["thickness 1e308", "mean edge length"],
+        &["--thickness 1e308", "mean edge length"],
     );
     optimize_with_fails(
         &dir,
         &["--min-edge", "1e308"],
-        &["minimum edge length 1e308", "mean edge length"],
+        &["--min-edge 1e308", "mean edge length"],
     );
     optimize_with_fails(
         &dir,
         &["--parallel", "--depth", "1e6"],
-        &["depth 1000000", "mean edge length"],
+        &["--depth 1000000", "mean edge length"],
     );
     optimize_with_fails(
         &dir,
@@ -828,4 +830,335 @@ fn a_surface_far_from_the_base_mesh() {
             "from the surface",
         ],
     );
+}
+
+/// The demo's saddle surface (area 566 model units squared) written into `dir`.
+fn saddle_surface(dir: &TempDir) -> PathBuf {
+    let path = dir.join("saddle.obj");
+    let (_, surface) =
+        honeycomb::generate::lifted_hex_patch(honeycomb::generate::Shape::Saddle, 200);
+    write_mesh(&path, &surface).expect("write the surface");
+    path
+}
+
+/// `honeycomb init SURFACE --edge-length EDGE --method METHOD -q -o DIR/base.obj`.
+fn init_at(dir: &TempDir, surface: &Path, edge: &str, method: &str) -> std::process::Output {
+    let base = dir.join("base.obj");
+    let _ = std::fs::remove_file(&base);
+    common::run_bounded(
+        [
+            "init".as_ref(),
+            surface.as_os_str(),
+            "--edge-length".as_ref(),
+            edge.as_ref(),
+            "--method".as_ref(),
+            method.as_ref(),
+            "-q".as_ref(),
+            "-o".as_ref(),
+            base.as_os_str(),
+        ],
+        60,
+    )
+}
+
+/// The top of the range of edge lengths an `init` error line offers (`... to X model units`).
+fn offered_top(line: &str) -> String {
+    let (head, _) = line
+        .split_once(" model units")
+        .unwrap_or_else(|| panic!("no range in {line}"));
+    let (_, top) = head
+        .rsplit_once(" to ")
+        .unwrap_or_else(|| panic!("no range in {line}"));
+    top.to_string()
+}
+
+#[test]
+fn the_edge_lengths_offered_are_the_ones_accepted() {
+    // The range offered went up to the diagonal of the bounding box (32.08 here), and edges
+    // from about 8 up were refused all the same ("no cell of edge length 9.0000 fits").
+    let dir = TempDir::new("the_edge_lengths_offered_are_the_ones_accepted");
+    let surface = saddle_surface(&dir);
+    for method in ["flatten", "field"] {
+        let by = format!("(the longest that lays cells by the {method} method)");
+        let line = assert_clean_failure(
+            &init_at(&dir, &surface, "1000", method),
+            &[
+                "--edge-length 1000:",
+                "choose smaller cells, 0.0104407 to ",
+                &by,
+            ],
+            None,
+        );
+        let top = offered_top(&line);
+        let value: f64 = top.parse().unwrap_or_else(|_| panic!("{top} in {line}"));
+        assert!(value > 1.0 && value < 32.0, "{line}");
+        // The same range whichever way the edge length is out of it.
+        let line = assert_clean_failure(
+            &init_at(&dir, &surface, "1e-300", method),
+            &["--edge-length 1e-300:", "choose larger cells"],
+            None,
+        );
+        assert_eq!(offered_top(&line), top, "{line}");
+        // Its top end lays a mesh.
+        let output = init_at(&dir, &surface, &top, method);
+        common::assert_success(
+            &output,
+            &format!("init --edge-length {top} --method {method}"),
+        );
+        assert!(dir.join("base.obj").is_file());
+        // The next value of as many digits above it is refused, naming the option.
+        let unit = 10f64.powi(value.log10().floor() as i32 - 3);
+        let above = honeycomb::error::rounded(value + unit, 4);
+        let shown = format!("--edge-length {above}:");
+        let line = assert_clean_failure(
+            &init_at(&dir, &surface, &above, method),
+            &[
+                &shown,
+                "no cell of that size fits",
+                "choose smaller cells",
+                &by,
+            ],
+            None,
+        );
+        assert_eq!(offered_top(&line), top, "{line}");
+    }
+}
+
+#[test]
+fn numbers_in_messages_are_readable_at_every_scale() {
+    // The base mesh's mean edge length was shown as 0.0000; a count of cells as inf.
+    let dir = TempDir::new("numbers_in_messages_are_readable_at_every_scale");
+    let (vertices, faces) = hexagon_pair();
+    let small: Vec<[f64; 3]> = vertices.iter().map(|p| p.map(|c| c * 1e-5)).collect();
+    let base = dir.write("small.obj", &obj(&small, &faces));
+    let out = dir.join("out");
+    for (extra, shown) in [
+        (
+            &["--thickness", "1"][..],
+            "--thickness 1: more than 1000 times",
+        ),
+        (&["--min-edge", "1"], "--min-edge 1: more than 10 times"),
+        (
+            &["--parallel", "--depth", "1"],
+            "--depth 1: more than 1000 times",
+        ),
+    ] {
+        let mut args: Vec<std::ffi::OsString> = vec!["optimize".into(), base.clone().into()];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["-o".into(), out.clone().into()]);
+        let line = assert_clean_failure(
+            &run(&args),
+            &[shown, "the base mesh's mean edge length 1e-5;"],
+            Some(&out),
+        );
+        assert!(!line.contains("0.0000"), "{line}");
+    }
+    let surface = saddle_surface(&dir);
+    for method in ["flatten", "field"] {
+        let line = assert_clean_failure(
+            &init_at(&dir, &surface, "1e-300", method),
+            &[
+                "--edge-length 1e-300: more cells than can be counted",
+                "on a surface of area 566.426",
+                "expected at most 2000000",
+            ],
+            None,
+        );
+        assert!(!line.contains("inf"), "{line}");
+    }
+    // A size inside the range the lattice misses: its edge length and area in a few digits.
+    let line = assert_clean_failure(
+        &init_at(&dir, &surface, "8", "field"),
+        &["no whole cell of edge length 8 fits on the surface (area 566.426, about 3.4 cells)"],
+        None,
+    );
+    assert!(!line.contains("8.0000"), "{line}");
+}
+
+#[test]
+fn a_demo_of_the_largest_size_offered_is_not_refused_for_its_size() {
+    // 300000 was offered, and refused as "the base mesh has 301362 vertices".
+    let dir = TempDir::new("a_demo_of_the_largest_size_offered");
+    let out = dir.join("out");
+    let demo = |extra: &[&str]| {
+        let mut args: Vec<std::ffi::OsString> = vec!["demo".into()];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["-o".into(), out.clone().into()]);
+        common::run_bounded(&args, 60)
+    };
+    for shape in ["saddle", "roof"] {
+        let line = assert_clean_failure(
+            &demo(&["--shape", shape, "--vertices", "300000"]),
+            &[
+                "--vertices 300000: expected 50 to 295000 vertices",
+                "a solve takes at most 300000",
+            ],
+            Some(&out),
+        );
+        assert!(!line.contains("base mesh has"), "{line}");
+        // At the top of the range the mesh is within a solve: only the iterations asked for
+        // (a week's work at that size) are refused.
+        let line = assert_clean_failure(
+            &demo(&[
+                "--shape",
+                shape,
+                "--vertices",
+                "295000",
+                "--iterations",
+                "10000",
+            ]),
+            &["--iterations 10000: on", "vertices expected at most"],
+            Some(&out),
+        );
+        assert!(!line.contains("base mesh has"), "{line}");
+        assert!(!out.exists());
+    }
+}
+
+#[test]
+fn lengths_the_pipeline_is_given_are_named_by_their_flags() {
+    let dir = TempDir::new("lengths_the_pipeline_is_given_are_named_by_their_flags");
+    let surface = saddle_surface(&dir);
+    let out = dir.join("out");
+    for (extra, shown) in [
+        (
+            &["--min-edge", "1e308"][..],
+            "--min-edge 1e308: more than 10 times",
+        ),
+        (
+            &["--thickness", "1e30"],
+            "--thickness 1e30: more than 1000 times",
+        ),
+    ] {
+        let mut args: Vec<std::ffi::OsString> = vec![
+            "pipeline".into(),
+            surface.clone().into(),
+            "--cells".into(),
+            "100".into(),
+        ];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["-o".into(), out.clone().into()]);
+        let line = assert_clean_failure(&common::run_bounded(&args, 120), &[shown], Some(&out));
+        assert!(!line.contains("minimum edge length"), "{line}");
+        assert!(!out.exists());
+    }
+}
+
+#[test]
+fn vector_files_with_a_byte_order_mark_are_read_as_the_meshes_are() {
+    // "`\u{feff}0` is not a number": the mark was kept in the first line of --axes and
+    // --sun-path files, which the mesh readers drop.
+    let dir = TempDir::new("vector_files_with_a_byte_order_mark");
+    let base = valid_base(&dir);
+    let axes = dir.write("axes.txt", &format!("\u{feff}{}", "0 0 1\r".repeat(24)));
+    let sun = dir.write("sun.txt", "\u{feff}0.3 0.1 1\r\n0 0.5 1\r\n");
+    for (name, extra) in [
+        ("axes", vec!["--axes", axes.to_str().unwrap()]),
+        (
+            "sun",
+            vec!["--light", "0,0.2,1", "--sun-path", sun.to_str().unwrap()],
+        ),
+    ] {
+        let out = dir.join(&format!("out-{name}"));
+        let mut args: Vec<std::ffi::OsString> = vec!["optimize".into(), base.clone().into()];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["--iterations", "2", "-q", "-o"].map(Into::into));
+        args.push(out.clone().into());
+        let output = run(&args);
+        let err = stderr(&output);
+        let file = format!("{name}.txt");
+        assert!(
+            !err.contains(&file) && !err.contains("not a number"),
+            "{err}"
+        );
+        // Honeycomb or not after two iterations, the run was made with the file.
+        let report = common::read_json(&common::written(&output, &out), "report.json");
+        assert_eq!(report["vertices"], 24, "{name}: {report}");
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn a_fifo_as_the_render_surface_is_not_a_regular_file() {
+    let dir = TempDir::new("a_fifo_as_the_render_surface");
+    let fifo = dir.join("surface.obj");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        println!("skipping: mkfifo is not available");
+        return;
+    }
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let picture = dir.join("picture.svg");
+    for color in ["closeness", "axis"] {
+        // It was "does not exist"; opening it would wait for a writer that never comes.
+        let output = common::run_bounded(
+            [
+                "render".as_ref(),
+                structure.as_os_str(),
+                "--color".as_ref(),
+                color.as_ref(),
+                "--surface".as_ref(),
+                fifo.as_os_str(),
+                "-o".as_ref(),
+                picture.as_os_str(),
+            ],
+            30,
+        );
+        let line = assert_clean_failure(
+            &output,
+            &["surface.obj", "not a regular file (a FIFO"],
+            None,
+        );
+        assert!(!line.contains("does not exist"), "{line}");
+        assert!(!picture.exists());
+    }
+    // An absent file still is one that does not exist.
+    let absent = dir.join("absent.obj");
+    let output = run([
+        "render".as_ref(),
+        structure.as_os_str(),
+        "--color".as_ref(),
+        "closeness".as_ref(),
+        "--surface".as_ref(),
+        absent.as_os_str(),
+        "-o".as_ref(),
+        picture.as_os_str(),
+    ]);
+    assert_clean_failure(&output, &["absent.obj does not exist"], None);
+}
+
+#[test]
+fn serve_refuses_a_thickness_it_would_not_use() {
+    // `serve DIR --thickness nan` started the editor as if no thickness had been given.
+    let dir = TempDir::new("serve_refuses_a_thickness_it_would_not_use");
+    let structure = structure_dir(&dir, "structure", &|_| {});
+    let saves = dir.join("saves");
+    let serve = |extra: &[&std::ffi::OsStr]| {
+        let mut args: Vec<std::ffi::OsString> = vec![
+            "serve".into(),
+            "--port".into(),
+            "0".into(),
+            "--saves".into(),
+            saves.clone().into(),
+        ];
+        args.extend(extra.iter().map(|a| a.to_os_string()));
+        // Accepted, the server would run until killed: the test then fails as a hang.
+        common::run_bounded(&args, 60)
+    };
+    let structure = structure.as_os_str();
+    for (value, shown) in [("nan", "NaN"), ("inf", "inf"), ("-1", "-1"), ("0", "0")] {
+        let keyword = format!("--thickness {shown}: expected a positive length");
+        for input in [&[structure][..], &[]] {
+            let mut extra = input.to_vec();
+            extra.extend([OsStr::new("--thickness"), OsStr::new(value)]);
+            assert_clean_failure(&serve(&extra), &[&keyword], Some(&saves));
+        }
+    }
+    // A structure directory is edited at its own thickness: another one is not used.
+    assert_clean_failure(
+        &serve(&[structure, "--thickness".as_ref(), "0.5".as_ref()]),
+        &["--thickness 0.5", "structure directory"],
+        Some(&saves),
+    );
+    assert!(!saves.exists());
 }

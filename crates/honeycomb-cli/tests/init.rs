@@ -457,7 +457,7 @@ fn pipeline_checks_its_options_before_writing() {
     for (extra, keywords) in [
         (
             vec!["--thickness", "1e308"],
-            vec!["thickness 1e308", "mean edge length"],
+            vec!["--thickness 1e308", "mean edge length"],
         ),
         (
             vec!["--parallel", "--w-parallel", "0"],

@@ -221,16 +221,29 @@ pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
             "mean_edge_length": m.mean_edge_length,
         },
     });
-    // JSON has no inf or NaN (serde_json writes null): a page would draw nonsense from it.
-    for key in ["base", "offset", "omega", "delta", "measures"] {
-        if has_null(&state[key]) {
-            return error_message(&format!(
-                "the state after this step has a {key} value that is not a finite number; not \
-                 sent (undo the last edit)"
-            ));
-        }
+    match non_finite_field(&state) {
+        Some(key) => error_message(&format!(
+            "the state after this step has a{} {key} value that is not a finite number; not \
+             sent (undo the last edit)",
+            if key.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                "n"
+            } else {
+                ""
+            }
+        )),
+        None => state,
     }
-    state
+}
+
+/// The numeric fields of a state message: every value in them must be finite.
+const NUMERIC_FIELDS: [&str; 6] = ["base", "offset", "omega", "delta", "axis", "measures"];
+
+/// The first of a state's [`NUMERIC_FIELDS`] holding a value that is not a finite number.
+/// JSON has no inf or NaN (serde_json writes null): a page would draw nonsense from it.
+fn non_finite_field(state: &Value) -> Option<&'static str> {
+    NUMERIC_FIELDS
+        .into_iter()
+        .find(|&key| has_null(&state[key]))
 }
 
 fn has_null(value: &Value) -> bool {
@@ -257,6 +270,21 @@ mod tests {
         // serde_json writes a non-finite number as null.
         let broken = json!({"base": [0.0, f32::INFINITY], "measures": {"delta_max": f64::NAN}});
         assert!(has_null(&broken["base"]) && has_null(&broken["measures"]));
+    }
+
+    #[test]
+    fn a_state_with_a_non_finite_axis_angle_is_not_sent() {
+        let state = |axis: f32| {
+            json!({
+                "base": [0.0, 1.0], "offset": [0.0, 1.0], "omega": [0.5], "delta": [1e-9],
+                "axis": [3.0, axis], "measures": {"omega_max_deg": 0.5},
+            })
+        };
+        assert_eq!(non_finite_field(&state(12.5)), None);
+        // The axis angles (the colour by axis) were sent as null.
+        for axis in [f32::NAN, f32::INFINITY] {
+            assert_eq!(non_finite_field(&state(axis)), Some("axis"), "{axis}");
+        }
     }
 
     #[test]

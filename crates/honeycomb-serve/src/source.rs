@@ -3,7 +3,7 @@
 
 use honeycomb::export::read_structure;
 use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::init::CellSize;
+use honeycomb::init::{CellSize, InitOptions};
 use honeycomb::interactive::Workspace;
 use honeycomb::limits::{check_solve_cells, check_solve_vertices};
 use honeycomb::mesh::{read_mesh, PolyMesh};
@@ -71,7 +71,7 @@ impl Source {
             }
             Source::Surface { path, cells, walls } => {
                 let surface = read_mesh(path)?.mesh;
-                check_solve_cells(CellSize::Cells(*cells), &surface)?;
+                check_solve_cells(&InitOptions::new(CellSize::Cells(*cells)), &surface)?;
                 // As `honeycomb pipeline` makes it, so that editing starts from a honeycomb.
                 let mut options = PipelineOptions::new(*cells);
                 options.walls = *walls;

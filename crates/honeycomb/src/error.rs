@@ -61,6 +61,33 @@ pub fn rounded(x: f64, digits: usize) -> String {
     short_number(text.parse().unwrap_or(x))
 }
 
+/// `x` rounded down to `digits` significant digits: the largest number of that many digits
+/// (as [`rounded`] shows it) that is at most `x`, for a bound a message offers as one that holds.
+pub fn rounded_down(x: f64, digits: usize) -> f64 {
+    let round = |y: f64| -> f64 { format!("{y:.*e}", digits.max(1) - 1).parse().unwrap_or(y) };
+    let r = round(x);
+    if !x.is_finite() || r <= x {
+        return r;
+    }
+    // Rounded up: one unit of the last digit less.
+    let unit = 10f64.powi(x.abs().log10().floor() as i32 + 1 - digits.max(1) as i32);
+    round(r - unit).min(x)
+}
+
+/// An estimated count as a message shows it: `about 384900 cells`, `about 1.5e12 cells`, and
+/// for one too large for a number (it overflowed) `more cells than can be counted`.
+pub fn about(count: f64, things: &str) -> String {
+    if !count.is_finite() {
+        format!("more {things} than can be counted")
+    } else if count < 1e9 {
+        format!("about {count:.0} {things}")
+    } else {
+        // `{:e}`: `{:?}` writes out every digit below 1e16.
+        let three_digits: f64 = rounded(count, 3).parse().unwrap_or(count);
+        format!("about {three_digits:e} {things}")
+    }
+}
+
 /// A direction as a message shows it: `0,0,1`, each coordinate to 4 significant digits.
 pub fn short_vector(v: crate::Vec3) -> String {
     coordinates(v, 4, ",")
@@ -78,7 +105,7 @@ fn coordinates(v: crate::Vec3, digits: usize, separator: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{rounded, short_number};
+    use super::{about, rounded, rounded_down, short_number};
 
     #[test]
     fn short_numbers() {
@@ -89,5 +116,21 @@ mod tests {
         );
         let shown = [0.339_78, 339.78, 3.3978e-7, 1.0, f64::INFINITY].map(|x| rounded(x, 4));
         assert_eq!(shown, ["0.3398", "339.8", "3.398e-7", "1", "inf"]);
+        let down = [7.38299, 7.38251, 7.3825, 99.99, 1e-300 * 4.56789].map(|x| rounded_down(x, 4));
+        assert_eq!(down, [7.382, 7.382, 7.382, 99.99, 4.567e-300]);
+        for x in [7.38299, 0.0104407, 32.0767, 1e300 / 3.0, 2.0f64.sqrt()] {
+            let r = rounded_down(x, 4);
+            assert!(r <= x && r > x * (1.0 - 1e-3), "{x} {r}");
+            assert_eq!(rounded(r, 4).parse::<f64>().unwrap(), r, "{x}");
+        }
+        let counts = [384_900.4, 1.5e12, f64::INFINITY].map(|c| about(c, "cells"));
+        assert_eq!(
+            counts,
+            [
+                "about 384900 cells",
+                "about 1.5e12 cells",
+                "more cells than can be counted"
+            ]
+        );
     }
 }

@@ -5,7 +5,7 @@
 //! picture's in [`crate::render::MAX_WIDTH`].
 
 use crate::error::{Error, Result};
-use crate::init::{hexagon_area, CellSize};
+use crate::init::{hexagon_area, CellSize, InitOptions};
 use crate::mesh::PolyMesh;
 
 /// Base-mesh vertices one solve takes at most: its factorization's fill grows faster than the
@@ -22,6 +22,27 @@ const VERTICES_PER_CELL: usize = 2;
 /// Cells a solve takes at most.
 pub const MAX_SOLVE_CELLS: usize = MAX_SOLVE_VERTICES / VERTICES_PER_CELL;
 
+/// Vertices a built-in surface's mesh may be asked for (`demo --vertices`, `bench --sizes`):
+/// [`crate::generate::lifted_hex_patch`] comes up to 1% above the count asked (a whole ring
+/// of cells, or a whole row of the roof), and the mesh must stay within a solve's
+/// [`MAX_SOLVE_VERTICES`].
+pub const MAX_GENERATED_VERTICES: usize = 295_000;
+/// And at least: fewer make a patch of a handful of cells.
+pub const MIN_GENERATED_VERTICES: usize = 50;
+
+/// `option` (`--vertices`, `--sizes`) asking for a built-in surface's mesh of `vertices`:
+/// refused outside [`MIN_GENERATED_VERTICES`] to [`MAX_GENERATED_VERTICES`].
+pub fn check_generated_vertices(option: &str, vertices: usize) -> Result<()> {
+    if !(MIN_GENERATED_VERTICES..=MAX_GENERATED_VERTICES).contains(&vertices) {
+        return Err(Error::Parameter(format!(
+            "{option} {vertices}: expected {MIN_GENERATED_VERTICES} to \
+             {MAX_GENERATED_VERTICES} vertices (a built-in surface's mesh comes up to 1% \
+             larger than asked, and a solve takes at most {MAX_SOLVE_VERTICES})"
+        )));
+    }
+    Ok(())
+}
+
 /// `option value` (e.g. `--vertices 5000000`) asks for a solve of `vertices` vertices:
 /// refused beyond [`MAX_SOLVE_VERTICES`].
 pub fn check_solve_vertices(option: &str, vertices: usize) -> Result<()> {
@@ -35,11 +56,12 @@ pub fn check_solve_vertices(option: &str, vertices: usize) -> Result<()> {
     Ok(())
 }
 
-/// The cells of `size` that a solve will take: `--cells` as asked, `--edge-length` on
-/// `surface`'s area (and within the lattice's own range there).
-pub fn check_solve_cells(size: CellSize, surface: &PolyMesh) -> Result<()> {
-    crate::init::check_edge_length(surface, size)?;
-    let (option, cells) = match size {
+/// The cells of `init`'s size that a solve will take: `--cells` as asked, `--edge-length` on
+/// `surface`'s area (and within the lattice's own range there,
+/// [`crate::init::check_edge_length`]).
+pub fn check_solve_cells(init: &InitOptions, surface: &PolyMesh) -> Result<()> {
+    crate::init::check_edge_length(surface, init)?;
+    let (option, cells) = match init.size {
         CellSize::Cells(n) => (format!("--cells {n}"), n as f64),
         CellSize::EdgeLength(l) => (
             format!("--edge-length {}", crate::error::rounded(l, 6)),
@@ -48,8 +70,9 @@ pub fn check_solve_cells(size: CellSize, surface: &PolyMesh) -> Result<()> {
     };
     if cells > MAX_SOLVE_CELLS as f64 {
         return Err(Error::Parameter(format!(
-            "{option}: about {cells:.0} cells to solve; expected at most {MAX_SOLVE_CELLS} \
-             (a solve takes at most {MAX_SOLVE_VERTICES} vertices)"
+            "{option}: {} to solve; expected at most {MAX_SOLVE_CELLS} (a solve takes at \
+             most {MAX_SOLVE_VERTICES} vertices)",
+            crate::error::about(cells, "cells")
         )));
     }
     Ok(())
@@ -81,6 +104,7 @@ mod tests {
 
     #[test]
     fn solves_beyond_the_bounds_are_refused_naming_the_option() {
+        let sized = InitOptions::new;
         let e = check_solve_vertices("--vertices 2000000", 2_000_000).unwrap_err();
         assert!(
             e.to_string()
@@ -90,21 +114,21 @@ mod tests {
         check_solve_vertices("--vertices 1500", 1500).unwrap();
         // A unit square: 1e-3 edges make about 385k cells.
         let square = PolyMesh::unit_square();
-        let e = check_solve_cells(CellSize::EdgeLength(1e-3), &square).unwrap_err();
+        let e = check_solve_cells(&sized(CellSize::EdgeLength(1e-3)), &square).unwrap_err();
         assert!(
             e.to_string()
                 .contains("--edge-length 0.001: about 384900 cells"),
             "{e}"
         );
-        let e = check_solve_cells(CellSize::Cells(1_000_000), &square).unwrap_err();
+        let e = check_solve_cells(&sized(CellSize::Cells(1_000_000)), &square).unwrap_err();
         assert!(
             e.to_string()
                 .contains("--cells 1000000: about 1000000 cells"),
             "{e}"
         );
-        check_solve_cells(CellSize::Cells(150_000), &square).unwrap();
-        check_solve_cells(CellSize::EdgeLength(1.0), &square).unwrap();
-        let e = check_solve_cells(CellSize::EdgeLength(1e308), &square).unwrap_err();
+        check_solve_cells(&sized(CellSize::Cells(150_000)), &square).unwrap();
+        check_solve_cells(&sized(CellSize::EdgeLength(0.5)), &square).unwrap();
+        let e = check_solve_cells(&sized(CellSize::EdgeLength(1e308)), &square).unwrap_err();
         assert!(
             e.to_string()
                 .contains("--edge-length 1e308: no cell of that size fits"),
@@ -117,5 +141,37 @@ mod tests {
             "{e}"
         );
         check_solve(&square, 10_000).unwrap();
+    }
+
+    /// The largest mesh of a built-in surface that may be asked for is one a solve takes:
+    /// `demo --vertices 295000` is not refused for its size after all.
+    #[test]
+    fn the_largest_generated_mesh_is_within_a_solve() {
+        use crate::generate::{lifted_hex_patch, Shape};
+        for shape in [
+            Shape::Saddle,
+            Shape::Dome,
+            Shape::Cylinder,
+            Shape::Cone,
+            Shape::Wave,
+            Shape::Roof,
+        ] {
+            let (base, _) = lifted_hex_patch(shape, MAX_GENERATED_VERTICES);
+            let n = base.vertices.len();
+            assert!(n <= MAX_SOLVE_VERTICES, "{shape:?}: {n} vertices");
+            check_solve(&base, 10).unwrap();
+            // Up to 1% over the count asked, as the message says.
+            assert!(
+                n as f64 <= 1.01 * MAX_GENERATED_VERTICES as f64,
+                "{shape:?}: {n}"
+            );
+        }
+        check_generated_vertices("--vertices", MAX_GENERATED_VERTICES).unwrap();
+        check_generated_vertices("--vertices", 50).unwrap();
+        for bad in [49, MAX_GENERATED_VERTICES + 1, 300_000] {
+            let e = check_generated_vertices("--vertices", bad).unwrap_err();
+            let shown = format!("--vertices {bad}: expected 50 to 295000 vertices");
+            assert!(e.to_string().contains(&shown), "{e}");
+        }
     }
 }

@@ -447,54 +447,53 @@ fn pipeline_on_the_shared_surfaces() {
     };
     for file in FLATTENABLE.into_iter().filter(|&f| f != "YasIsland.off") {
         let s = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
-        for cells in [750] {
-            let plan_view = InitOptions {
-                flattener: Flattener::Project,
-                ..options(cells)
-            };
-            let made = init(&s, &plan_view)
-                .or_else(|_| init(&s, &options(cells)))
-                .unwrap();
-            let result = optimize_made_mesh(
-                &made.base,
-                &s,
-                &OptimizeOptions::default(),
-                true,
-                &mut |_, _| {},
-            )
+        let cells = 750;
+        let plan_view = InitOptions {
+            flattener: Flattener::Project,
+            ..options(cells)
+        };
+        let made = init(&s, &plan_view)
+            .or_else(|_| init(&s, &options(cells)))
             .unwrap();
-            let settled = &result.settled;
-            let m = &settled.measures;
-            println!(
-                "{file} {cells}: {} V, omega {:.2e}, delta {:.2e}, closeness {:.1e}, dropped {} \
+        let result = optimize_made_mesh(
+            &made.base,
+            &s,
+            &OptimizeOptions::default(),
+            true,
+            &mut |_, _| {},
+        )
+        .unwrap();
+        let settled = &result.settled;
+        let m = &settled.measures;
+        println!(
+            "{file} {cells}: {} V, omega {:.2e}, delta {:.2e}, closeness {:.1e}, dropped {} \
                  of {} cells in {} solves, second try {}, normals per edge {}",
-                settled.optimized.honeycomb.base.vertices.len(),
-                m.omega_max_deg,
-                m.delta_max,
-                m.closeness_max,
-                settled.dropped_cells,
-                made.base.faces.len(),
-                settled.solves,
-                result.second_try,
-                result.per_edge_fallback
-            );
-            assert!(
-                settled.dropped_cells as f64 <= 0.03 * made.base.faces.len() as f64,
-                "{file} {cells}"
-            );
-            assert!(
-                m.omega_max_deg < 0.01,
-                "{file} {cells}: {}",
-                m.omega_max_deg
-            );
-            assert!(m.delta_max < 1e-3, "{file} {cells}: delta {}", m.delta_max);
-            // Every vertex on S, the boundary ones too (none beyond S's edge).
-            assert!(
-                m.closeness_max < 1e-3,
-                "{file} {cells}: closeness {}",
-                m.closeness_max
-            );
-        }
+            settled.optimized.honeycomb.base.vertices.len(),
+            m.omega_max_deg,
+            m.delta_max,
+            m.closeness_max,
+            settled.dropped_cells,
+            made.base.faces.len(),
+            settled.solves,
+            result.second_try,
+            result.per_edge_fallback
+        );
+        assert!(
+            settled.dropped_cells as f64 <= 0.03 * made.base.faces.len() as f64,
+            "{file} {cells}"
+        );
+        assert!(
+            m.omega_max_deg < 0.01,
+            "{file} {cells}: {}",
+            m.omega_max_deg
+        );
+        assert!(m.delta_max < 1e-3, "{file} {cells}: delta {}", m.delta_max);
+        // Every vertex on S, the boundary ones too (none beyond S's edge).
+        assert!(
+            m.closeness_max < 1e-3,
+            "{file} {cells}: closeness {}",
+            m.closeness_max
+        );
     }
 }
 

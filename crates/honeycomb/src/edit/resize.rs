@@ -5,7 +5,7 @@
 use super::cell_walls::inward_walls;
 use super::translate::wall_shifts;
 use super::validated;
-use crate::error::{short_number, Error, Result};
+use crate::error::{rounded, short_number, Error, Result};
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::structure::Honeycomb;
 
@@ -50,10 +50,10 @@ pub fn resize_cell(h: &Honeycomb, conn: &Connectivity, cell: usize, by: f64) -> 
         let [a, b] = h.edges[if by > 0.0 { shrink.1 } else { grow.1 }];
         return Err(Error::Parameter(format!(
             "{what} turns edge {a}-{b} around: the cell (or its neighbour) would invert; \
-             expected an amount between {:.3} and {:.3} (edge length there {:.3})",
-            grow.0,
-            shrink.0,
-            (p[b] - p[a]).norm()
+             expected an amount between {} and {} (edge length there {})",
+            rounded(grow.0, 3),
+            rounded(shrink.0, 3),
+            rounded((p[b] - p[a]).norm(), 3)
         )));
     }
     let vertices = p.iter().zip(&unit).map(|(&q, &u)| q + u * by).collect();

@@ -2,7 +2,7 @@
 //! `structure.json`, `report.json` (and `quads.obj` for a quad-capped honeycomb). Every file is written to a temporary name and renamed, so a
 //! reader never sees a half-written file.
 
-use crate::error::{short_number, Error, Result};
+use crate::error::{rounded, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::io::read_file;
 use crate::mesh::{validate_base_mesh, Outputs};
@@ -92,7 +92,10 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
     if !s.thickness.is_finite() || s.thickness <= 0.0 {
         return Err(bad(
             0,
-            format!("thickness {} is not a positive length", s.thickness),
+            format!(
+                "thickness {} is not a positive length",
+                rounded(s.thickness, 6)
+            ),
         ));
     }
     let vertices: Vec<Vec3> = s.vertices.iter().map(|p| Vec3::from_slice(p)).collect();
@@ -122,8 +125,9 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
         return Err(bad(
             0,
             format!(
-                "thickness {}: more than {MAX_LENGTH} mean edge lengths ({edge:.4})",
-                short_number(s.thickness)
+                "thickness {}: more than {MAX_LENGTH} mean edge lengths ({})",
+                rounded(s.thickness, 6),
+                rounded(edge, 6)
             ),
         ));
     }
@@ -132,8 +136,9 @@ pub fn read_structure(dir: &Path) -> Result<(Honeycomb, Connectivity)> {
         return Err(bad(
             0,
             format!(
-                "offset vertex {v} lies more than {MAX_LENGTH} mean edge lengths ({edge:.4}) \
-                 from its vertex"
+                "offset vertex {v} lies more than {MAX_LENGTH} mean edge lengths ({}) from \
+                 its vertex",
+                rounded(edge, 6)
             ),
         ));
     }

@@ -4,7 +4,7 @@
 
 use super::Vec3;
 use crate::error::{Error, Result};
-use crate::mesh::io::{read_file, text_lines};
+use crate::mesh::io::{read_file, strip_bom, text_lines};
 use std::path::Path;
 
 /// Every vector of the file with its 1-based line number. A line without exactly three numbers
@@ -23,6 +23,8 @@ pub fn read_vectors(path: &Path) -> Result<Vec<(usize, Vec3)>> {
             .count();
         bad(line, "not UTF-8 text".to_string())
     })?;
+    // As the mesh readers: a byte order mark is dropped, LF, CRLF and CR alone end lines.
+    let text = strip_bom(text);
     let mut vectors = Vec::new();
     for (index, raw) in text_lines(text).enumerate() {
         let line = index + 1;
@@ -72,4 +74,49 @@ pub fn read_axes(path: &Path, num_vertices: usize) -> Result<Vec<Vec3>> {
         });
     }
     Ok(vectors.into_iter().map(|(_, a)| a).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_byte_order_mark_and_every_line_ending_read_alike() {
+        let dir = std::env::temp_dir().join(format!("honeycomb-vectors-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let text = "# sun positions\n0 0 1\n\n1, 0, 1\n";
+        // The mark made the first line "`\u{feff}#` is not a number" (or a first vector so).
+        for (name, variant) in [
+            ("lf.txt", text.to_string()),
+            ("bom.txt", format!("\u{feff}{text}")),
+            (
+                "bom-vector.txt",
+                "\u{feff}0 0 1\n\n1, 0, 1\n".replace("\n\n", "\n#\n"),
+            ),
+            ("cr.txt", format!("\u{feff}{}", text.replace('\n', "\r"))),
+            ("crlf.txt", text.replace('\n', "\r\n")),
+        ] {
+            let path = dir.join(name);
+            std::fs::write(&path, variant).unwrap();
+            let read = read_vectors(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let vectors: Vec<Vec3> = read.iter().map(|&(_, v)| v).collect();
+            assert_eq!(
+                vectors,
+                [Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 1.0)],
+                "{name}"
+            );
+            // Line numbers count the lines as written, the mark's line too.
+            let lines: Vec<usize> = read.iter().map(|&(line, _)| line).collect();
+            let expected = if name == "bom-vector.txt" {
+                [1, 3]
+            } else {
+                [2, 4]
+            };
+            assert_eq!(lines, expected, "{name}");
+        }
+        let axes = dir.join("axes.txt");
+        std::fs::write(&axes, "\u{feff}0 0 1\r0 0 0\r").unwrap();
+        assert_eq!(read_axes(&axes, 2).unwrap().len(), 2);
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

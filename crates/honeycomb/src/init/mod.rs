@@ -23,7 +23,7 @@ pub use flatten::{flatten, flatten_viewed, Distortion, Flattener, Flattening, Po
 pub use lattice::{Corner, Lattice};
 pub use strokes::{read_strokes, sixfold_mean};
 
-use crate::error::{rounded, short_number, Error, Result};
+use crate::error::{about, rounded, rounded_down, short_number, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::surface::Surface;
@@ -211,55 +211,155 @@ impl InitOptions {
     }
 }
 
-/// The edge lengths that make at most [`MAX_CELLS`] cells of `surface`'s area and at least one
-/// no larger than its extent (the diagonal of its bounding box).
+/// The edge lengths that make at most [`MAX_CELLS`] cells of `surface`'s area, and cells no
+/// larger than the surface: a regular hexagon of S's whole area (and no longer than the
+/// diagonal of its bounding box). No edge outside this range lays a mesh; whether the longest
+/// in it do depends on S's outline and the method, and [`largest_fitting_edge`] finds the
+/// longest that does.
 pub fn edge_length_range(surface: &PolyMesh) -> (f64, f64) {
     let first = surface.vertices.first().copied().unwrap_or(Vec3::ZERO);
     let (lo, hi) = surface
         .vertices
         .iter()
         .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-    let shortest = (surface.area() / (MAX_CELLS as f64 * hexagon_area(1.0))).sqrt();
-    (shortest, (hi - lo).norm())
+    let area = surface.area();
+    let shortest = (area / (MAX_CELLS as f64 * hexagon_area(1.0))).sqrt();
+    let one_cell = (area / hexagon_area(1.0)).sqrt();
+    (shortest, one_cell.min((hi - lo).norm()))
 }
 
-/// An edge length outside [`edge_length_range`] is refused before any lattice is laid: a
-/// longer one fits no cell and overflows the lattice's extent, a shorter one is a memory bomb.
-pub(crate) fn check_edge_length(surface: &PolyMesh, size: CellSize) -> Result<()> {
-    let CellSize::EdgeLength(l) = size else {
+/// The largest edges [`largest_fitting_edge`] tries are found to this many significant digits.
+const FITTING_DIGITS: usize = 4;
+/// It tries edges down from the top of [`edge_length_range`] by this factor, then halves the
+/// step between the last that laid no cell and the first that did.
+const FITTING_STEP: f64 = 0.8;
+/// It gives up below this share of the top of the range (ten thousand cells' worth).
+const FITTING_BOTTOM: f64 = 0.01;
+
+/// The longest edge length (to [`FITTING_DIGITS`] significant digits, and within
+/// [`edge_length_range`]) at which `init` with `options` lays a base mesh on `surface`, or
+/// `None` when none down to a hundredth of the range's top does. Found by trying: longer
+/// cells than the surface's outline holds fit nowhere, and where the longest that fit lie
+/// depends on the outline, the flattening and the lattice. Deterministic for `options`, and
+/// cheap next to `init` at a size that makes many cells (the cells tried are few).
+pub fn largest_fitting_edge(surface: &PolyMesh, options: &InitOptions) -> Option<f64> {
+    let (shortest, longest) = edge_length_range(surface);
+    let start = Instant::now();
+    let sized = |edge: f64| InitOptions {
+        size: CellSize::EdgeLength(edge),
+        ..options.clone()
+    };
+    let bottom = shortest.max(FITTING_BOTTOM * longest);
+    match options.method {
+        Method::Field => search_down(longest, bottom, |edge| {
+            init_field(surface, &sized(edge), start).is_ok()
+        }),
+        Method::Flatten => {
+            let (vertices, triangles) = surface.star_triangulated();
+            let flat =
+                flatten_viewed(&vertices, &triangles, options.flattener, options.view).ok()?;
+            search_down(longest, bottom, |edge| {
+                lay_lattice(surface, &vertices, &triangles, &flat, &sized(edge), start).is_ok()
+            })
+        }
+    }
+}
+
+/// The largest number of [`FITTING_DIGITS`] digits from `top` down to `bottom` for which
+/// `lays` holds, found in steps of [`FITTING_STEP`] and then by halving the last step.
+fn search_down(top: f64, bottom: f64, lays: impl Fn(f64) -> bool) -> Option<f64> {
+    let digits = |x: f64| rounded_down(x, FITTING_DIGITS);
+    let mut edge = digits(top);
+    let mut failed = None;
+    let mut fits = loop {
+        if !(edge >= bottom && edge > 0.0) {
+            return None;
+        }
+        if lays(edge) {
+            break edge;
+        }
+        failed = Some(edge);
+        edge = digits(FITTING_STEP * edge);
+    };
+    let Some(mut fails) = failed else {
+        return Some(fits);
+    };
+    loop {
+        let mid = digits(0.5 * (fits + fails));
+        if mid <= fits || mid >= fails {
+            return Some(fits);
+        }
+        if lays(mid) {
+            fits = mid;
+        } else {
+            fails = mid;
+        }
+    }
+}
+
+/// An edge length outside [`edge_length_range`] is refused before any lattice is laid (a
+/// longer one fits no cell and overflows the lattice's extent, a shorter one is a memory
+/// bomb), naming the range that works: its top the longest edge that lays cells on `surface`
+/// with `options` ([`largest_fitting_edge`], tried only for the message).
+pub fn check_edge_length(surface: &PolyMesh, options: &InitOptions) -> Result<()> {
+    let CellSize::EdgeLength(l) = options.size else {
         return Ok(());
     };
     let (shortest, longest) = edge_length_range(surface);
-    let range = format!(
-        "{} to {} model units",
-        rounded(shortest, 6),
-        rounded(longest, 6)
-    );
     if l > longest {
-        // About the surface as much as the option: the front names the file.
-        return Err(Error::Mesh(format!(
-            "--edge-length {}: no cell of that size fits on the surface (the diagonal of its \
-             bounding box is {}): choose smaller cells, {range}",
-            rounded(l, 6),
-            rounded(longest, 6)
-        )));
+        return Err(too_long(
+            surface,
+            options,
+            l,
+            largest_fitting_edge(surface, options),
+        ));
     }
     if l < shortest {
         let area = surface.area();
         let cells = area / hexagon_area(1.0) / l / l;
-        let cells = if cells < 1e9 {
-            format!("{cells:.0}")
-        } else {
-            rounded(cells, 3)
-        };
         return Err(Error::Parameter(format!(
-            "--edge-length {}: about {cells} cells on a surface of area {}; expected at most \
-             {MAX_CELLS}: choose larger cells, {range}",
+            "--edge-length {}: {} on a surface of area {}; expected at most {MAX_CELLS}: \
+             choose larger cells, {}",
             rounded(l, 6),
-            rounded(area, 6)
+            about(cells, "cells"),
+            rounded(area, 6),
+            working_range(surface, options, largest_fitting_edge(surface, options))
         )));
     }
     Ok(())
+}
+
+/// `--edge-length l`, which lays no cell on `surface`, refused with the range that does
+/// (`fits`: the longest edge that lays cells, if one was found).
+fn too_long(surface: &PolyMesh, options: &InitOptions, l: f64, fits: Option<f64>) -> Error {
+    // About the surface as much as the option: the front names the file.
+    Error::Mesh(format!(
+        "--edge-length {}: no cell of that size fits on the surface (area {}): choose smaller \
+         cells, {}",
+        rounded(l, 6),
+        rounded(surface.area(), 6),
+        working_range(surface, options, fits)
+    ))
+}
+
+/// `0.0104407 to 7.383 model units`: the range of edge lengths that lays cells on `surface`
+/// with `options`, from [`edge_length_range`] and `fits` ([`largest_fitting_edge`]).
+fn working_range(surface: &PolyMesh, options: &InitOptions, fits: Option<f64>) -> String {
+    let (shortest, longest) = edge_length_range(surface);
+    let method = format!("{:?}", options.method).to_lowercase();
+    match fits {
+        Some(fits) => format!(
+            "{} to {} model units (the longest that lays cells by the {method} method)",
+            rounded(shortest, 6),
+            rounded(fits, 6)
+        ),
+        None => format!(
+            "from {}; none of {} down to {} model units lays cells on it by the {method} method",
+            rounded(shortest, 6),
+            rounded(longest, 6),
+            rounded(shortest.max(FITTING_BOTTOM * longest), 6)
+        ),
+    }
 }
 
 /// Cells within this share of the count asked for are taken as they come; beyond it the
@@ -287,8 +387,42 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
             "the surface has {components} separate pieces; init needs one (split the file)"
         )));
     }
-    check_edge_length(surface, options.size)?;
-    let mut made = match options.method {
+    check_edge_length(surface, options)?;
+    let mut made = made_or_too_long(surface, options, laid(surface, options, start))?;
+    made.report.seconds = start.elapsed().as_secs_f64();
+    Ok(made)
+}
+
+/// `made`, or when it laid no mesh at an edge length longer than the longest that does on
+/// `surface`, that edge length refused with the range that works. Below that longest one a
+/// failure says that it does lay cells (the lattice can miss at one size and fit at a longer
+/// one); failures no edge length mends stay as they were.
+fn made_or_too_long(
+    surface: &PolyMesh,
+    options: &InitOptions,
+    made: Result<Initialized>,
+) -> Result<Initialized> {
+    match (made, options.size) {
+        (Err(Error::Mesh(m)), CellSize::EdgeLength(l)) => {
+            match largest_fitting_edge(surface, options) {
+                Some(fits) if l > fits => Err(too_long(surface, options, l, Some(fits))),
+                Some(fits) => Err(Error::Mesh(format!(
+                    "--edge-length {}: {m}; yet the lattice misses at some sizes: {}, the \
+                     longest edge length that lays cells by the {} method, does",
+                    rounded(l, 6),
+                    rounded(fits, 6),
+                    format!("{:?}", options.method).to_lowercase()
+                ))),
+                None => Err(Error::Mesh(m)),
+            }
+        }
+        (made, _) => made,
+    }
+}
+
+/// The base mesh `options` asks for on `surface` (checked, in one piece).
+fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Initialized> {
+    let made = match options.method {
         Method::Field => counted(options, |o| init_field(surface, o, start))?,
         Method::Flatten => {
             let (vertices, triangles) = surface.star_triangulated();
@@ -312,7 +446,6 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
             }
         }
     };
-    made.report.seconds = start.elapsed().as_secs_f64();
     Ok(made)
 }
 
@@ -380,9 +513,10 @@ fn lay_lattice(
     let fits = area / hexagon_area(edge);
     if fits > MAX_CELLS as f64 {
         return Err(Error::Parameter(format!(
-            "--edge-length {}: about {fits:.0} cells on a surface of area {area:.4}; \
-             expected at most {MAX_CELLS}",
-            rounded(edge, 6)
+            "--edge-length {}: {} on a surface of area {}; expected at most {MAX_CELLS}",
+            rounded(edge, 6),
+            about(fits, "cells"),
+            rounded(area, 6)
         )));
     }
     let angle = lattice_angle(options, vertices, triangles, &flat.points)?;
@@ -398,8 +532,9 @@ fn lay_lattice(
     // A NaN comes from an extent that overflows.
     if covering.is_nan() || covering > 10.0 * MAX_CELLS as f64 {
         return Err(Error::Mesh(format!(
-            "the flattened surface spreads over about {covering:.0} cells of its bounding box \
-             for {fits:.0} on the surface: too thin for a grid of this size"
+            "the flattened surface spreads over {} of its bounding box for {fits:.0} on \
+             the surface: too thin for a grid of this size",
+            about(covering, "cells"),
         )));
     }
     let locator = Locator::new(&flat.points, triangles);
@@ -413,8 +548,11 @@ fn lay_lattice(
     );
     if placed.is_empty() {
         return Err(Error::Mesh(format!(
-            "no cell of edge length {edge:.4} fits on the surface (area {area:.4}, about \
-             {fits:.1} cells): choose smaller cells"
+            "no cell of edge length {} fits on the surface (area {}, about {} cells): \
+             choose smaller cells",
+            rounded(edge, 6),
+            rounded(area, 6),
+            rounded(fits, 2)
         )));
     }
     // Each corner's position on S: through its triangle, or along its boundary edge.
@@ -442,9 +580,10 @@ fn lay_lattice(
         .collect();
     if unfolded.is_empty() {
         return Err(Error::Mesh(format!(
-            "every one of the {} cells of edge length {edge:.4} straddles a place where the \
+            "every one of the {} cells of edge length {} straddles a place where the \
              flattening overlaps itself; try other --cells or --method field",
-            placed.cells.len()
+            placed.cells.len(),
+            rounded(edge, 6)
         )));
     }
     let cells = largest_component(&unfolded);

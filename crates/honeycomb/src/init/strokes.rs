@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
-use crate::mesh::io::{read_file, text_lines};
+use crate::mesh::io::{read_file, strip_bom, text_lines};
 use std::path::Path;
 
 /// The polylines of an OBJ file's `l` records (1-based or negative indices into its `v`).
@@ -15,6 +15,8 @@ pub fn read_strokes(path: &Path) -> Result<Vec<Vec<Vec3>>> {
     };
     let bytes = read_file(path)?;
     let text = std::str::from_utf8(&bytes).map_err(|_| bad(0, "not UTF-8 text".into()))?;
+    // As the mesh readers: a byte order mark is dropped, LF, CRLF and CR alone end lines.
+    let text = strip_bom(text);
     let mut vertices = Vec::new();
     let mut lines = Vec::new();
     for (number, line) in text_lines(text).enumerate().map(|(i, l)| (i + 1, l)) {
@@ -145,6 +147,36 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("no polyline"));
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn strokes_with_a_byte_order_mark_or_any_line_ending_read_alike() {
+        let dir =
+            std::env::temp_dir().join(format!("honeycomb-strokes-bom-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let text = "v 0 0 0\nv 1 0 0\nv 2 1 0\nl 1 2 3\n";
+        // With the mark, the first `v` record was not one: the polyline lost a vertex.
+        for (name, variant) in [
+            ("lf.obj", text.to_string()),
+            ("bom.obj", format!("\u{feff}{text}")),
+            ("cr.obj", format!("\u{feff}{}", text.replace('\n', "\r"))),
+            ("crlf.obj", text.replace('\n', "\r\n")),
+        ] {
+            let path = dir.join(name);
+            std::fs::write(&path, variant).unwrap();
+            let lines = read_strokes(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(lines.len(), 1, "{name}");
+            assert_eq!(
+                lines[0],
+                [
+                    Vec3::new(0.0, 0.0, 0.0),
+                    Vec3::new(1.0, 0.0, 0.0),
+                    Vec3::new(2.0, 1.0, 0.0)
+                ],
+                "{name}"
+            );
+        }
         std::fs::remove_dir_all(&dir).ok();
     }
 }

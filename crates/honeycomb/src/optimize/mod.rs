@@ -29,7 +29,7 @@ use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
     PrescribedAxes,
 };
-use crate::error::{rounded, short_number, Error, Result};
+use crate::error::{rounded, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::solve::{Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolverOptions};
@@ -92,14 +92,24 @@ pub const DEFAULT_THICKNESS: f64 = 0.3;
 
 /// A distance between M and M' (model units) must be a positive length.
 pub fn check_thickness(t: f64) -> Result<()> {
-    if !t.is_finite() || t <= 0.0 {
+    check_positive_length("thickness", t)
+}
+
+/// `length`, which `label` names, must be a positive length.
+fn check_positive_length(label: &str, length: f64) -> Result<()> {
+    if !length.is_finite() || length <= 0.0 {
         return Err(Error::Parameter(format!(
-            "thickness {}: expected a positive length in model units",
-            rounded(t, 6)
+            "{label} {}: expected a positive length in model units",
+            rounded(length, 6)
         )));
     }
     Ok(())
 }
+
+/// How [`OptimizeOptions::validate`] names the lengths it checks: the thickness, the
+/// minimum edge length and the depth of parallel meshes. A front passes its own names to
+/// [`OptimizeOptions::validate_as`] (the CLI its flags).
+pub const LENGTH_LABELS: [&str; 3] = ["thickness", "minimum edge length", "depth"];
 
 /// Thickness and depth beyond this many mean edge lengths are refused: no structure is that
 /// deep, and the solve would lose the cells' scale in roundoff.
@@ -113,8 +123,9 @@ pub(crate) fn check_scale(label: &str, length: f64, ratio: f64, edge: f64) -> Re
     if length > ratio * edge {
         return Err(Error::Parameter(format!(
             "{label} {}: more than {ratio} times the base mesh's mean edge length \
-             {edge:.4}; expected a length in the model's units",
-            short_number(length)
+             {}; expected a length in the model's units",
+            rounded(length, 6),
+            rounded(edge, 6)
         )));
     }
     Ok(())
@@ -178,26 +189,31 @@ impl OptimizeOptions {
 
     /// Checks the options against the (valid) base mesh they are for.
     pub fn validate(&self, base: &PolyMesh) -> Result<()> {
+        self.validate_as(base, LENGTH_LABELS)
+    }
+
+    /// `validate` naming the thickness, the minimum edge length and the depth by `labels`
+    /// (a front's flags; see [`LENGTH_LABELS`]).
+    pub fn validate_as(
+        &self,
+        base: &PolyMesh,
+        [thickness, min_edge, depth_label]: [&str; 3],
+    ) -> Result<()> {
         self.weights.validate()?;
         crate::limits::check_solve(base, self.solver.max_iterations)?;
         let edge = base.mean_edge_length();
         if let Some(t) = self.thickness {
-            check_thickness(t)?;
-            check_scale("thickness", t, MAX_LENGTH, edge)?;
+            check_positive_length(thickness, t)?;
+            check_scale(thickness, t, MAX_LENGTH, edge)?;
         }
         if let Some(length) = self.min_edge {
-            if !length.is_finite() || length <= 0.0 {
-                return Err(Error::Parameter(format!(
-                    "minimum edge length {}: expected a positive length",
-                    rounded(length, 6)
-                )));
-            }
-            check_scale("minimum edge length", length, MAX_MIN_EDGE, edge)?;
+            check_positive_length(min_edge, length)?;
+            check_scale(min_edge, length, MAX_MIN_EDGE, edge)?;
         }
         if let Some(p) = &self.parallel {
-            p.validate()?;
+            p.validate_as([depth_label, "parallelity weight", "depth weight"])?;
             if let Some(depth) = p.depth {
-                check_scale("depth", depth, MAX_LENGTH, edge)?;
+                check_scale(depth_label, depth, MAX_LENGTH, edge)?;
             }
         }
         if let Some(a) = &self.axes {

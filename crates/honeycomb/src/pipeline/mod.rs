@@ -21,7 +21,7 @@ use crate::init::{init, CellSize, Flattener, InitOptions, Initialized, Method};
 use crate::mesh::{validate_surface_mesh, PolyMesh};
 use crate::optimize::{
     optimize, optimize_made_mesh, Attempt, AxesOptions, Frame, OptimizeOptions, Optimized,
-    WallNormals, DEFAULT_THICKNESS,
+    WallNormals, DEFAULT_THICKNESS, LENGTH_LABELS,
 };
 use crate::reciprocal::{walls_across, Across, AcrossOptions, Stage};
 use crate::report::Report;
@@ -44,6 +44,9 @@ pub struct PipelineOptions {
     /// caller's choice).
     pub second_try: bool,
     pub across: AcrossOptions,
+    /// How messages name the thickness, the minimum edge length and the depth
+    /// ([`OptimizeOptions::validate_as`]; the CLI's flags).
+    pub length_labels: [&'static str; 3],
 }
 
 impl PipelineOptions {
@@ -56,6 +59,7 @@ impl PipelineOptions {
             optimize: OptimizeOptions::default(),
             second_try: true,
             across: AcrossOptions::default(),
+            length_labels: LENGTH_LABELS,
         }
     }
 }
@@ -324,7 +328,9 @@ fn solve_made(
     fallback: bool,
     progress: &mut dyn FnMut(Step),
 ) -> Result<std::result::Result<Solved, (String, usize)>> {
-    options.optimize.validate(&made.base)?;
+    options
+        .optimize
+        .validate_as(&made.base, options.length_labels)?;
     if walls == Walls::Across {
         match across_or_none(
             &made.base,

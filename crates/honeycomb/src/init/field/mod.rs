@@ -21,7 +21,7 @@ mod sampling;
 mod tangent;
 mod tidy;
 
-use crate::error::{Error, Result};
+use crate::error::{about, rounded, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, PolyMesh};
 use crate::surface::Surface;
@@ -56,7 +56,7 @@ pub fn field_hex_mesh(
     if !edge.is_finite() || edge <= 0.0 {
         return Err(Error::Parameter(format!(
             "edge length {}: expected a positive length in model units",
-            crate::error::rounded(edge, 6)
+            rounded(edge, 6)
         )));
     }
     if let Some((k, _)) = strokes
@@ -74,17 +74,21 @@ pub fn field_hex_mesh(
     let cells = area / super::hexagon_area(edge);
     if cells > super::MAX_CELLS as f64 {
         return Err(Error::Parameter(format!(
-            "edge length {}: about {cells:.0} cells on a surface of area {area:.4}; \
-             expected at most {}",
-            crate::error::rounded(edge, 6),
+            "edge length {}: {} on a surface of area {}; expected at most {}",
+            rounded(edge, 6),
+            about(cells, "cells"),
+            rounded(area, 6),
             super::MAX_CELLS
         )));
     }
     let fits = cells >= 1.0; // false for a NaN area too
     if !fits {
         return Err(Error::Mesh(format!(
-            "no cell of edge length {edge:.4} fits on the surface (area {area:.4}, about \
-             {cells:.2} cells): choose smaller cells"
+            "no cell of edge length {} fits on the surface (area {}, about {} cells): \
+             choose smaller cells",
+            rounded(edge, 6),
+            rounded(area, 6),
+            rounded(cells, 2)
         )));
     }
     let spacing = SQRT3 * edge;
@@ -105,8 +109,11 @@ pub fn field_hex_mesh(
     let hex = dual::hex_mesh(&lattice, &s, edge);
     if hex.faces.is_empty() {
         return Err(Error::Mesh(format!(
-            "no whole cell of edge length {edge:.4} fits on the surface (area {area:.4}, \
-             about {cells:.1} cells): choose smaller cells"
+            "no whole cell of edge length {} fits on the surface (area {}, about {} \
+             cells): choose smaller cells",
+            rounded(edge, 6),
+            rounded(area, 6),
+            rounded(cells, 2)
         )));
     }
     validate_base_mesh(&hex).map_err(|e| {

@@ -116,8 +116,9 @@ pub fn constraints(
     if !followed {
         // Strokes that steer nothing are a mistake in the file, not a wish to be ignored.
         return Err(Error::Parameter(format!(
-            "--align: no stroke runs along the surface within {radius:.4} of it (each is \
-             too far away, of zero length or along the surface's normal)"
+            "--align: no stroke runs along the surface within {} of it (each is too far \
+             away, of zero length or along the surface's normal)",
+            crate::error::rounded(radius, 6)
         )));
     }
     Ok(fixed)
