@@ -29,7 +29,7 @@ impl Default for AcrossOptions {
             field: AxisFieldOptions::default(),
             placement: PlacementOptions::default(),
             thickness: None,
-            max_drops: 3,
+            max_drops: 5,
             max_dropped_share: crate::optimize::MAX_DROPPED_SHARE,
         }
     }
