@@ -86,7 +86,7 @@ const CUT_OFF_SHARE: f64 = 0.01;
 /// Of `candidates` (sorted), those that can go in turn while the rest of the cells stays one
 /// piece (cells joined through shared edges), with the few cells a candidate would cut off
 /// (sorted).
-fn keeping_one_piece(conn: &Connectivity, cells: usize, candidates: &[usize]) -> Vec<usize> {
+pub fn keeping_one_piece(conn: &Connectivity, cells: usize, candidates: &[usize]) -> Vec<usize> {
     let cut_off_limit = (CUT_OFF_SHARE * cells as f64).floor() as usize;
     let mut gone = vec![false; cells];
     for &f in candidates {

@@ -10,8 +10,8 @@ mod variants;
 mod weights;
 
 pub use broken_cells::{
-    broken_boundary_cells, kept_vertices, optimize_dropping_broken_cells, without_cells, Settled,
-    MAX_DROPPED_SHARE,
+    broken_boundary_cells, keeping_one_piece, kept_vertices, optimize_dropping_broken_cells,
+    without_cells, Settled, MAX_DROPPED_SHARE,
 };
 pub use frame::Frame;
 pub use made_mesh::{optimize_made_mesh, Attempt, MadeMeshResult};

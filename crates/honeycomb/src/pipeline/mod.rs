@@ -94,7 +94,7 @@ pub const MAX_BASE_EDGE_CV: f64 = 0.25;
 
 /// A honeycomb of walls across S is kept when every vertex is this close to S (mean edge
 /// lengths), besides the honeycomb tolerances and no wall quad crossed (see `is_clean`).
-const ACROSS_CLOSENESS: f64 = 0.05;
+const ACROSS_CLOSENESS: f64 = crate::reciprocal::ON_S;
 
 /// Seeds the pipeline tries with the field method: the next one's singular points and
 /// dislocations fall elsewhere.
@@ -833,16 +833,22 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
     report.dropped_boundary_cells = Some(across.dropped_cells);
     report.axis_field_iterations = Some(across.field_iterations);
     let mut notes = Vec::new();
-    if across.dropped_cells > 0 {
+    let broken = across.dropped_cells - across.trimmed_cells;
+    let were = |n: usize| if n == 1 { "was" } else { "were" };
+    if broken > 0 {
         notes.push(format!(
             "{} whose walls the fitted axes crossed or turned over {} dropped; initial.obj \
              is the mesh without them",
-            cells(across.dropped_cells, "boundary cell"),
-            if across.dropped_cells == 1 {
-                "was"
-            } else {
-                "were"
-            }
+            cells(broken, "boundary cell"),
+            were(broken)
+        ));
+    }
+    if across.trimmed_cells > 0 {
+        notes.push(format!(
+            "{} that stood out beyond S's border {} trimmed; initial.obj is the mesh without \
+             them",
+            cells(across.trimmed_cells, "boundary cell"),
+            were(across.trimmed_cells)
         ));
     }
     Solved {

@@ -2,7 +2,7 @@
 //! fitted to the normals, the base mesh placed on its walls, and boundary cells that placement
 //! breaks dropped (the sheet of the rest is the same sheet, so placement alone is repeated).
 
-use super::{fit_axis_field, place, AxisFieldOptions, PlacementOptions, Sheet};
+use super::{fit_axis_field, place, trim_overhang, AxisFieldOptions, PlacementOptions, Sheet};
 use crate::error::Result;
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, Connectivity, PolyMesh};
@@ -21,6 +21,9 @@ pub struct AcrossOptions {
     pub max_drops: usize,
     /// At most this share of the cells is dropped.
     pub max_dropped_share: f64,
+    /// At most this share of the cells is trimmed where it stands out beyond S's border
+    /// ([`trim_overhang`]; none when `max_drops` is 0).
+    pub max_trimmed_share: f64,
 }
 
 impl Default for AcrossOptions {
@@ -31,6 +34,7 @@ impl Default for AcrossOptions {
             thickness: None,
             max_drops: 5,
             max_dropped_share: crate::optimize::MAX_DROPPED_SHARE,
+            max_trimmed_share: 0.01,
         }
     }
 }
@@ -42,7 +46,9 @@ pub struct Across {
     /// The base mesh the kept result started from (without dropped cells), model units.
     pub base: PolyMesh,
     pub measures: Measures,
+    /// Boundary cells dropped, the trimmed ones among them.
     pub dropped_cells: usize,
+    pub trimmed_cells: usize,
     /// Iterations of the sheet's fit and of every placement.
     pub field_iterations: usize,
     pub placement_iterations: usize,
@@ -133,17 +139,22 @@ pub fn walls_across(
         let broken = broken_boundary_cells(&honeycomb, &conn, &measures);
         if broken.is_empty() || drops == options.max_drops || dropped_cells + broken.len() > allowed
         {
-            return Ok(Across {
+            let across = Across {
                 honeycomb,
                 connectivity: conn,
                 base: model_base,
                 measures,
                 dropped_cells,
+                trimmed_cells: 0,
                 field_iterations,
                 placement_iterations,
                 solve: solves.take().expect("a solve ran"),
                 field_converged,
-            });
+            };
+            if options.max_drops == 0 {
+                return Ok(across);
+            }
+            return trim_overhang(across, options.max_trimmed_share, model_surface);
         }
         // The same sheet without the broken cells: each dropped cell's point becomes the ghost
         // of the walls it bordered.

@@ -19,8 +19,10 @@ mod across;
 mod axis_field;
 mod placement;
 mod sheet;
+mod trim;
 
 pub use across::{walls_across, Across, AcrossOptions, Stage};
 pub use axis_field::{fit_axis_field, AxisField, AxisFieldOptions};
 pub use placement::{place, slide_onto, Placed, PlacementOptions};
 pub use sheet::Sheet;
+pub use trim::{overhanging_cells, trim_overhang, without_honeycomb_cells, ON_S};

@@ -47,6 +47,9 @@ pub struct Measures {
     /// Per node: the angle (degrees) between its axis and S's normal.
     #[serde(skip)]
     pub axis_normal_per_node: Vec<f64>,
+    /// Per vertex: its distance to S in mean edge lengths.
+    #[serde(skip)]
+    pub closeness_per_vertex: Vec<f64>,
 }
 
 /// Mean, 95th percentile and largest of a set of values.
@@ -234,6 +237,7 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         delta_per_wall,
         convex_per_wall,
         axis_normal_per_node: lean,
+        closeness_per_vertex: closeness,
     }
 }
 

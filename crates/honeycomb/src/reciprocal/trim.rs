@@ -1,0 +1,138 @@
+//! Boundary cells of a finished honeycomb that stand out beyond S's border, trimmed.
+//!
+//! A lattice cell that S's border cuts through keeps its whole hexagon. Where the border runs
+//! steeply across the walls, the placement cannot bring such a cell's outer vertices onto S:
+//! their node axes pass beside S. Taking the cell away leaves a honeycomb as it was: every
+//! other wall keeps its plane and every node its angles (a node that loses a wall keeps the two
+//! that meet at 120 degrees), so nothing is solved again.
+
+use super::Across;
+use crate::error::Result;
+use crate::mesh::{validate_base_mesh, Connectivity};
+use crate::optimize::{keeping_one_piece, kept_vertices, without_cells};
+use crate::structure::{measure, Honeycomb, Measures};
+use crate::surface::Surface;
+
+/// A vertex within this many mean edge lengths of S is on S.
+pub const ON_S: f64 = 0.05;
+
+/// `across` without the cells [`overhanging_cells`] lists (with at most `max_share` of the
+/// cells), measured again on `surface`.
+pub fn trim_overhang(across: Across, max_share: f64, surface: &Surface) -> Result<Across> {
+    let (h, conn, m) = (&across.honeycomb, &across.connectivity, &across.measures);
+    let trimmed = overhanging_cells(h, conn, m, max_share);
+    if trimmed.is_empty() {
+        return Ok(across);
+    }
+    let (honeycomb, connectivity) = without_honeycomb_cells(h, &trimmed)?;
+    let measures = measure(&honeycomb, surface);
+    Ok(Across {
+        base: without_cells(&across.base, &trimmed),
+        honeycomb,
+        connectivity,
+        measures,
+        dropped_cells: across.dropped_cells + trimmed.len(),
+        trimmed_cells: across.trimmed_cells + trimmed.len(),
+        ..across
+    })
+}
+
+/// The boundary cells of `h` that hold a vertex off S (farther than [`ON_S`] by `m`), with
+/// the few cells their loss would cut off (sorted): all of them, when they are at most
+/// `max_share` of the cells and can go without cutting a lobe off the rest; else none.
+pub fn overhanging_cells(
+    h: &Honeycomb,
+    conn: &Connectivity,
+    m: &Measures,
+    max_share: f64,
+) -> Vec<usize> {
+    let cells = h.base.faces.len();
+    let off_s = |v: &usize| m.closeness_per_vertex[*v] > ON_S;
+    let overhanging: Vec<usize> = (0..cells)
+        .filter(|&f| {
+            let on_boundary = conn.face_edges[f].iter().any(|&e| conn.is_boundary_edge(e));
+            on_boundary && h.base.faces[f].iter().any(off_s)
+        })
+        .collect();
+    let allowed = (max_share * cells as f64).floor() as usize;
+    if overhanging.is_empty() || overhanging.len() > allowed {
+        return Vec::new();
+    }
+    let trimmed = keeping_one_piece(conn, cells, &overhanging);
+    // A cell kept for the structure's sake would still stand out: no use trimming the others.
+    if trimmed.len() > allowed
+        || overhanging
+            .iter()
+            .any(|f| trimmed.binary_search(f).is_err())
+    {
+        return Vec::new();
+    }
+    trimmed
+}
+
+/// `h` without the cells `drop` (sorted) and the vertices no other cell holds; every other
+/// vertex keeps its position and axis, so M' keeps its offset.
+pub fn without_honeycomb_cells(h: &Honeycomb, drop: &[usize]) -> Result<(Honeycomb, Connectivity)> {
+    let kept = kept_vertices(&h.base, drop);
+    let base = without_cells(&h.base, drop);
+    let conn = validate_base_mesh(&base)?;
+    let axes = kept.iter().map(|&v| h.axes[v]).collect();
+    Ok((Honeycomb::new(base, &conn, axes, h.thickness), conn))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::hex_disk;
+    use crate::geometry::Vec3;
+
+    /// A plane hex disk with vertical axes: a honeycomb on itself.
+    fn flat() -> (Honeycomb, Connectivity, Surface) {
+        let disk = hex_disk(6.0);
+        let conn = validate_base_mesh(&disk).unwrap();
+        let axes = vec![Vec3::new(0.0, 0.0, 1.0); disk.vertices.len()];
+        let surface = Surface::from_mesh(&disk).unwrap();
+        (Honeycomb::new(disk, &conn, axes, 0.3), conn, surface)
+    }
+
+    /// The boundary vertices farthest out along +x, lifted off the plane by `lift` edges.
+    fn lifted(h: &Honeycomb, conn: &Connectivity, count: usize, lift: f64) -> Honeycomb {
+        let mut outer: Vec<usize> = (0..h.base.vertices.len())
+            .filter(|&v| conn.valence(v) == 2)
+            .collect();
+        outer.sort_by(|&a, &b| h.base.vertices[b].x.total_cmp(&h.base.vertices[a].x));
+        let mut base = h.base.clone();
+        let unit = base.mean_edge_length();
+        for &v in &outer[..count] {
+            base.vertices[v].z += lift * unit;
+        }
+        Honeycomb::new(base, conn, h.axes.clone(), h.thickness)
+    }
+
+    #[test]
+    fn a_cell_standing_out_is_trimmed_and_the_rest_stays_a_honeycomb() {
+        let (h, conn, surface) = flat();
+        let out = lifted(&h, &conn, 1, 0.5);
+        let m = measure(&out, &surface);
+        assert!(m.closeness_max > ON_S);
+        let trimmed = overhanging_cells(&out, &conn, &m, 0.1);
+        assert_eq!(trimmed.len(), 1, "{trimmed:?}");
+        let (rest, _) = without_honeycomb_cells(&out, &trimmed).unwrap();
+        let m = measure(&rest, &surface);
+        assert_eq!(rest.base.faces.len(), h.base.faces.len() - 1);
+        assert!(m.closeness_max < 1e-12, "{}", m.closeness_max);
+        assert!(m.omega_max_deg < 1e-9, "{}", m.omega_max_deg);
+        assert!(m.delta_max < 1e-12, "{}", m.delta_max);
+    }
+
+    #[test]
+    fn nothing_is_trimmed_beyond_its_share_or_on_s() {
+        let (h, conn, surface) = flat();
+        assert!(overhanging_cells(&h, &conn, &measure(&h, &surface), 0.1).is_empty());
+        let out = lifted(&h, &conn, 6, 0.5);
+        let m = measure(&out, &surface);
+        let share = 2.0 / h.base.faces.len() as f64;
+        assert!(overhanging_cells(&out, &conn, &m, share).is_empty());
+        assert!(!overhanging_cells(&out, &conn, &m, 0.5).is_empty());
+    }
+}
