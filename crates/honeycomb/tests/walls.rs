@@ -250,8 +250,9 @@ fn bumpy_ball(amp: f64) -> PolyMesh {
     PolyMesh::new(vertices, faces)
 }
 
-/// The real roofs of ../shared/data at 1500 cells: each a honeycomb in one piece (cells are
-/// dropped only where that leaves the rest whole), camelhead refused at once.
+/// The real roofs of ../shared/data at 1500 cells: each a honeycomb with its walls across S
+/// (every vertex on S, leaning at most half what parallel axes lean), in one piece (cells are
+/// dropped only where that leaves the rest whole); camelhead refused at once.
 #[test]
 fn the_shared_roofs_become_honeycombs_in_one_piece() {
     let Some(data) = common::shared_data() else {
@@ -278,8 +279,18 @@ fn the_shared_roofs_become_honeycombs_in_one_piece() {
             made.measures.parallel_baseline_deg.mean,
             made.measures.edge_length_cv
         );
+        let m = &made.measures;
         assert!(r.honeycomb, "{file}: {:?}", made.notes);
-        assert!(made.measures.omega_max_deg < 0.01, "{file}");
+        assert!(m.omega_max_deg < 0.01, "{file}");
+        assert!(m.delta_max < 1e-6, "{file}: delta {}", m.delta_max);
+        assert_eq!(r.walls, Walls::Across, "{file}: {:?}", made.notes);
+        assert!(m.closeness_max < 0.05, "{file}: {}", m.closeness_max);
+        assert!(
+            m.axis_normal_deg.mean <= 0.5 * m.parallel_baseline_deg.mean,
+            "{file}: axis {} against {}",
+            m.axis_normal_deg.mean,
+            m.parallel_baseline_deg.mean
+        );
         let base = &made.optimized.honeycomb.base;
         assert_eq!(pieces(base), 1, "{file}: {:?}", made.notes);
         let off = (base.faces.len() as f64 / 1500.0 - 1.0).abs();
