@@ -308,27 +308,7 @@ fn the_shared_roofs_become_honeycombs_in_one_piece() {
 /// Pieces of a mesh joined through shared edges.
 fn pieces(mesh: &PolyMesh) -> usize {
     let conn = Connectivity::build(mesh).unwrap();
-    let mut seen = vec![false; mesh.faces.len()];
-    let mut count = 0;
-    for root in 0..mesh.faces.len() {
-        if seen[root] {
-            continue;
-        }
-        count += 1;
-        seen[root] = true;
-        let mut stack = vec![root];
-        while let Some(f) = stack.pop() {
-            for &e in &conn.face_edges[f] {
-                for g in conn.edge_faces[e].iter().flatten().copied() {
-                    if !seen[g] {
-                        seen[g] = true;
-                        stack.push(g);
-                    }
-                }
-            }
-        }
-    }
-    count
+    conn.pieces(&vec![false; mesh.faces.len()]).len()
 }
 
 /// A vertical cylindrical band of radius `r` and height `h`, triangulated.

@@ -381,7 +381,7 @@ pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     let start = Instant::now();
     options.validate()?;
     let conn = validate_surface_mesh(surface)?;
-    let components = face_components(surface, &conn);
+    let components = conn.pieces(&vec![false; surface.faces.len()]).len();
     if components > 1 {
         return Err(Error::Mesh(format!(
             "the surface has {components} separate pieces; init needs one (split the file)"
@@ -647,31 +647,6 @@ fn init_field(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Resu
     let conn = validate_base_mesh(&base)?;
     let report = report(&base, &conn, surface, options, edge, None, start)?;
     Ok(Initialized { base, report })
-}
-
-/// Connected pieces of the mesh (faces joined through shared edges).
-fn face_components(mesh: &PolyMesh, conn: &Connectivity) -> usize {
-    let mut seen = vec![false; mesh.faces.len()];
-    let mut components = 0;
-    for root in 0..mesh.faces.len() {
-        if seen[root] {
-            continue;
-        }
-        components += 1;
-        seen[root] = true;
-        let mut stack = vec![root];
-        while let Some(f) = stack.pop() {
-            for &e in &conn.face_edges[f] {
-                for g in conn.edge_faces[e].into_iter().flatten() {
-                    if !seen[g] {
-                        seen[g] = true;
-                        stack.push(g);
-                    }
-                }
-            }
-        }
-    }
-    components
 }
 
 /// The rotation that makes the lattice's edges follow the boundary or the strokes.

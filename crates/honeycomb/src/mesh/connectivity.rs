@@ -198,7 +198,57 @@ impl Connectivity {
         }
     }
 
+    /// The faces not `gone` gathered into pieces joined through shared edges, each in the
+    /// order it was reached from its lowest face.
+    pub fn pieces(&self, gone: &[bool]) -> Vec<Vec<usize>> {
+        let mut seen = gone.to_vec();
+        let mut pieces = Vec::new();
+        for root in 0..gone.len() {
+            if seen[root] {
+                continue;
+            }
+            seen[root] = true;
+            let (mut stack, mut piece) = (vec![root], vec![root]);
+            while let Some(f) = stack.pop() {
+                for &e in &self.face_edges[f] {
+                    for g in self.edge_faces[e].into_iter().flatten() {
+                        if !seen[g] {
+                            seen[g] = true;
+                            piece.push(g);
+                            stack.push(g);
+                        }
+                    }
+                }
+            }
+            pieces.push(piece);
+        }
+        pieces
+    }
+
     pub fn is_boundary_edge(&self, e: usize) -> bool {
         self.edge_faces[e][1].is_none()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Vec3;
+
+    /// Three squares in a row, and a fourth apart.
+    #[test]
+    fn pieces_are_joined_through_edges_and_split_where_faces_are_gone() {
+        let vertices = (0..4)
+            .flat_map(|x| (0..2).map(move |y| Vec3::new(x as f64, y as f64, 0.0)))
+            .chain((0..4).map(|k| Vec3::new(9.0 + (k % 2) as f64, (k / 2) as f64, 0.0)))
+            .collect();
+        let square = |x: usize| vec![2 * x, 2 * x + 2, 2 * x + 3, 2 * x + 1];
+        let faces = vec![square(0), square(1), square(2), vec![8, 9, 11, 10]];
+        let conn = Connectivity::build(&PolyMesh::new(vertices, faces)).unwrap();
+        assert_eq!(conn.pieces(&[false; 4]), vec![vec![0, 1, 2], vec![3]]);
+        assert_eq!(
+            conn.pieces(&[false, true, false, false]),
+            vec![vec![0], vec![2], vec![3]]
+        );
     }
 }

@@ -94,7 +94,7 @@ pub fn keeping_one_piece(conn: &Connectivity, cells: usize, candidates: &[usize]
             continue;
         }
         gone[f] = true;
-        let mut pieces = pieces(conn, &gone);
+        let mut pieces = conn.pieces(&gone);
         // The largest piece stays (the first of equals); the others are cut off.
         let largest = (0..pieces.len()).max_by_key(|&k| (pieces[k].len(), Reverse(k)));
         if let Some(k) = largest {
@@ -110,32 +110,6 @@ pub fn keeping_one_piece(conn: &Connectivity, cells: usize, candidates: &[usize]
         }
     }
     (0..cells).filter(|&f| gone[f]).collect()
-}
-
-/// The cells not `gone` gathered into pieces joined through shared edges.
-fn pieces(conn: &Connectivity, gone: &[bool]) -> Vec<Vec<usize>> {
-    let mut seen = gone.to_vec();
-    let mut pieces: Vec<Vec<usize>> = Vec::new();
-    for root in 0..gone.len() {
-        if seen[root] {
-            continue;
-        }
-        seen[root] = true;
-        let (mut stack, mut piece) = (vec![root], vec![root]);
-        while let Some(f) = stack.pop() {
-            for &e in &conn.face_edges[f] {
-                for g in conn.edge_faces[e].iter().flatten().copied() {
-                    if !seen[g] {
-                        seen[g] = true;
-                        piece.push(g);
-                        stack.push(g);
-                    }
-                }
-            }
-        }
-        pieces.push(piece);
-    }
-    pieces
 }
 
 /// The vertices of `mesh` that some face outside `drop` (sorted) uses, in order: vertex `k` of
@@ -328,7 +302,7 @@ mod piece_tests {
         let halves = without_cells(&disk, &cut);
         let conn = Connectivity::build(&halves).unwrap();
         let cells = halves.faces.len();
-        assert_eq!(pieces(&conn, &vec![false; cells]).len(), 1);
+        assert_eq!(conn.pieces(&vec![false; cells]).len(), 1);
         let bridge = (0..cells)
             .find(|&f| centre(&halves, f).norm() < 0.5)
             .unwrap();
@@ -364,7 +338,7 @@ mod piece_tests {
         let conn = Connectivity::build(&island).unwrap();
         let cells = island.faces.len();
         assert!(cells >= 100, "{cells} cells: 1% of them must hold the tip");
-        assert_eq!(pieces(&conn, &vec![false; cells]).len(), 1);
+        assert_eq!(conn.pieces(&vec![false; cells]).len(), 1);
         // Indices of the island: cells after a dropped one shift down.
         let index = |f: usize| f - moat.iter().filter(|&&g| g < f).count();
         let mut expected = vec![index(neck), index(tip)];
