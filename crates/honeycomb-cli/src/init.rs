@@ -236,7 +236,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     let mut report = made.report;
     report.seconds = start.elapsed().as_secs_f64();
     let mut notes = made.notes;
-    notes.extend(out.note());
+    notes.extend(out.note(verdict(&report)));
     report.notes = notes.clone();
     let dir = &out.finish(verdict(&report), |dir| {
         let mut outputs = Outputs::new();

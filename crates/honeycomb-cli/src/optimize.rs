@@ -497,7 +497,7 @@ fn solve_and_write(
             &sun_path,
         ));
     }
-    notes.extend(out.note());
+    notes.extend(out.note(verdict(&report)));
     report.notes = notes.clone();
     let quads: Vec<(&str, &PolyMesh)> = optimized.quads.iter().map(|q| ("quads.obj", q)).collect();
     let dir = out.finish(verdict(&report), |dir| {

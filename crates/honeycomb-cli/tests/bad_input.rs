@@ -832,7 +832,7 @@ fn a_surface_far_from_the_base_mesh() {
     );
 }
 
-/// The demo's saddle surface (area 566 model units squared) written into `dir`.
+/// The demo's saddle surface written into `dir`.
 fn saddle_surface(dir: &TempDir) -> PathBuf {
     let path = dir.join("saddle.obj");
     let (_, surface) =
@@ -874,8 +874,7 @@ fn offered_top(line: &str) -> String {
 
 #[test]
 fn the_edge_lengths_offered_are_the_ones_accepted() {
-    // The range offered went up to the diagonal of the bounding box (32.08 here), and edges
-    // from about 8 up were refused all the same ("no cell of edge length 9.0000 fits").
+    // The top of the range a refusal offers must itself be accepted, the next step up not.
     let dir = TempDir::new("the_edge_lengths_offered_are_the_ones_accepted");
     let surface = saddle_surface(&dir);
     for method in ["flatten", "field"] {
@@ -926,7 +925,7 @@ fn the_edge_lengths_offered_are_the_ones_accepted() {
 
 #[test]
 fn numbers_in_messages_are_readable_at_every_scale() {
-    // The base mesh's mean edge length was shown as 0.0000; a count of cells as inf.
+    // Tiny lengths and huge counts must read as numbers, never as 0.0000 or inf.
     let dir = TempDir::new("numbers_in_messages_are_readable_at_every_scale");
     let (vertices, faces) = hexagon_pair();
     let small: Vec<[f64; 3]> = vertices.iter().map(|p| p.map(|c| c * 1e-5)).collect();
@@ -977,7 +976,7 @@ fn numbers_in_messages_are_readable_at_every_scale() {
 
 #[test]
 fn a_demo_of_the_largest_size_offered_is_not_refused_for_its_size() {
-    // 300000 was offered, and refused as "the base mesh has 301362 vertices".
+    // The top of the range offered must not be refused for the mesh it makes.
     let dir = TempDir::new("a_demo_of_the_largest_size_offered");
     let out = dir.join("out");
     let demo = |extra: &[&str]| {
@@ -1090,7 +1089,7 @@ fn a_fifo_as_the_render_surface_is_not_a_regular_file() {
     let structure = structure_dir(&dir, "structure", &|_| {});
     let picture = dir.join("picture.svg");
     for color in ["closeness", "axis"] {
-        // It was "does not exist"; opening it would wait for a writer that never comes.
+        // Not "does not exist"; opening it would wait for a writer that never comes.
         let output = common::run_bounded(
             [
                 "render".as_ref(),
@@ -1129,7 +1128,7 @@ fn a_fifo_as_the_render_surface_is_not_a_regular_file() {
 
 #[test]
 fn serve_refuses_a_thickness_it_would_not_use() {
-    // `serve DIR --thickness nan` started the editor as if no thickness had been given.
+    // `serve DIR --thickness nan` must not start the editor as if none had been given.
     let dir = TempDir::new("serve_refuses_a_thickness_it_would_not_use");
     let structure = structure_dir(&dir, "structure", &|_| {});
     let saves = dir.join("saves");

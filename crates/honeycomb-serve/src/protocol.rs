@@ -281,7 +281,7 @@ mod tests {
             })
         };
         assert_eq!(non_finite_field(&state(12.5)), None);
-        // The axis angles (the colour by axis) were sent as null.
+        // The axis angles (the colour by axis) must not go out as null.
         for axis in [f32::NAN, f32::INFINITY] {
             assert_eq!(non_finite_field(&state(axis)), Some("axis"), "{axis}");
         }

@@ -144,7 +144,7 @@ mod tests {
     }
 
     /// The largest mesh of a built-in surface that may be asked for is one a solve takes:
-    /// `demo --vertices 295000` is not refused for its size after all.
+    /// `demo --vertices 295000` is not refused for its size.
     #[test]
     fn the_largest_generated_mesh_is_within_a_solve() {
         use crate::generate::{lifted_hex_patch, Shape};

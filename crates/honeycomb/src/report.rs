@@ -44,10 +44,14 @@ pub struct Report {
     /// Shading: the light share before and after, for the design light and a sun path.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shading: Option<ShadingReport>,
-    /// `pipeline`: boundary cells dropped because the solve broke them, the solves of the kept
-    /// try, and whether it is the second (no fairness, minimum edge length).
+    /// `pipeline`: boundary cells dropped because the solve broke them or because they stood
+    /// out beyond S's border (with the few cells their loss cut off), those trimmed from the
+    /// finished walls across S among them, the solves of the kept try, and whether it is the
+    /// second (no fairness, minimum edge length).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dropped_boundary_cells: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trimmed_boundary_cells: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solves: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -126,6 +130,7 @@ impl Report {
                 }),
             shading: None,
             dropped_boundary_cells: None,
+            trimmed_boundary_cells: None,
             solves: None,
             second_try: None,
             per_edge_fallback: None,

@@ -431,11 +431,11 @@ fn hex_meshes_on_the_shared_surfaces() {
     }
 }
 
-/// The plan-view path on the real surfaces (`--walls` given as a direction): the grid seen from
-/// above (ARAP where S folds over), then the solve for a mesh the program made (broken boundary
+/// The plan-view path on the real surfaces (`--walls uniform`): the grid seen along S's mean
+/// normal (ARAP where S folds over), then the solve for a mesh the program made (broken boundary
 /// cells dropped, a second try without fairness). At about 1.5k vertices all of them become
 /// honeycombs (omega below 0.01 degrees, planar walls).
-/// camelhead is left out: its flattened cells vary too much in size (cv 0.76); so is Yas
+/// camelhead is left out: its flattened cells vary too much in size; so is Yas
 /// Island, whose steep boundary cells this solve breaks where dropping them would cut the ring
 /// in pieces (cells are never dropped then; walls across S, the default, make it a honeycomb:
 /// tests/walls.rs).

@@ -85,7 +85,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("honeycomb-vectors-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let text = "# sun positions\n0 0 1\n\n1, 0, 1\n";
-        // The mark made the first line "`\u{feff}#` is not a number" (or a first vector so).
+        // The mark must not make the first line a word that is not a number.
         for (name, variant) in [
             ("lf.txt", text.to_string()),
             ("bom.txt", format!("\u{feff}{text}")),

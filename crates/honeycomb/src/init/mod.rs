@@ -213,9 +213,9 @@ impl InitOptions {
 
 /// The edge lengths that make at most [`MAX_CELLS`] cells of `surface`'s area, and cells no
 /// larger than the surface: a regular hexagon of S's whole area (and no longer than the
-/// diagonal of its bounding box). No edge outside this range lays a mesh; whether the longest
-/// in it do depends on S's outline and the method, and [`largest_fitting_edge`] finds the
-/// longest that does.
+/// diagonal of its bounding box). No longer edge lays a mesh, and no shorter one is allowed;
+/// whether the longest in it do depends on S's outline and the method, and
+/// [`largest_fitting_edge`] searches for the longest that does.
 pub fn edge_length_range(surface: &PolyMesh) -> (f64, f64) {
     let first = surface.vertices.first().copied().unwrap_or(Vec3::ZERO);
     let (lo, hi) = surface
@@ -236,12 +236,13 @@ const FITTING_STEP: f64 = 0.8;
 /// It gives up below this share of the top of the range (ten thousand cells' worth).
 const FITTING_BOTTOM: f64 = 0.01;
 
-/// The longest edge length (to [`FITTING_DIGITS`] significant digits, and within
+/// The longest edge length found (to [`FITTING_DIGITS`] significant digits, and within
 /// [`edge_length_range`]) at which `init` with `options` lays a base mesh on `surface`, or
-/// `None` when none down to a hundredth of the range's top does. Found by trying: longer
-/// cells than the surface's outline holds fit nowhere, and where the longest that fit lie
-/// depends on the outline, the flattening and the lattice. Deterministic for `options`, and
-/// cheap next to `init` at a size that makes many cells (the cells tried are few).
+/// `None` when none down to a hundredth of the range's top does. Found by trying, from the
+/// top down and then by halving: cells longer than the surface's outline holds fit nowhere,
+/// and where the longest that fit lie depends on the outline, the flattening and the lattice
+/// (a size that misses between two that fit can hide a longer one). Deterministic for
+/// `options`; the sizes tried make few cells, each a quick `init`.
 pub fn largest_fitting_edge(surface: &PolyMesh, options: &InitOptions) -> Option<f64> {
     let (shortest, longest) = edge_length_range(surface);
     let start = Instant::now();
@@ -342,7 +343,7 @@ fn too_long(surface: &PolyMesh, options: &InitOptions, l: f64, fits: Option<f64>
     ))
 }
 
-/// `0.0104407 to 7.383 model units`: the range of edge lengths that lays cells on `surface`
+/// `A to B model units`: the range of edge lengths that lays cells on `surface`
 /// with `options`, from [`edge_length_range`] and `fits` ([`largest_fitting_edge`]).
 fn working_range(surface: &PolyMesh, options: &InitOptions, fits: Option<f64>) -> String {
     let (shortest, longest) = edge_length_range(surface);
@@ -408,7 +409,7 @@ fn made_or_too_long(
                 Some(fits) if l > fits => Err(too_long(surface, options, l, Some(fits))),
                 Some(fits) => Err(Error::Mesh(format!(
                     "--edge-length {}: {m}; yet the lattice misses at some sizes: {}, the \
-                     longest edge length that lays cells by the {} method, does",
+                     longest edge length found that lays cells by the {} method, does",
                     rounded(l, 6),
                     rounded(fits, 6),
                     format!("{:?}", options.method).to_lowercase()

@@ -156,7 +156,7 @@ mod tests {
             std::env::temp_dir().join(format!("honeycomb-strokes-bom-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let text = "v 0 0 0\nv 1 0 0\nv 2 1 0\nl 1 2 3\n";
-        // With the mark, the first `v` record was not one: the polyline lost a vertex.
+        // The mark must not hide the first `v` record (the polyline would lose a vertex).
         for (name, variant) in [
             ("lf.obj", text.to_string()),
             ("bom.obj", format!("\u{feff}{text}")),

@@ -3,9 +3,11 @@
 //!
 //! - [`Walls::Across`] (the default): a flattening that keeps lengths (ARAP) gives cells of one
 //!   size on S; the node axes are fitted to S's normals as a folded sheet and the vertices
-//!   placed on its walls (`reciprocal`), boundary cells the placement breaks dropped. A surface
-//!   that no flattening covers with cells of one size is refused at once, with its curvature.
-//!   Where the result is no honeycomb, the guided projection of the same mesh is kept instead.
+//!   placed on its walls (`reciprocal`), boundary cells the placement breaks dropped and those
+//!   standing out beyond S's border trimmed. A surface that curves more than a lattice of the
+//!   cells asked absorbs is refused at once. Where the result is not clean (after a repair and
+//!   the lattice turned by 30 degrees), the guided projection of the same mesh is kept instead,
+//!   unless it is no honeycomb while the walls across S are one.
 //! - [`Walls::Uniform`]: S seen along its mean normal, a regular grid laid in plan view and
 //!   lifted: a honeycomb with parallel node axes (vertical walls on a roof) from the start.
 //! - [`Walls::Direction`]: the same seen along a given direction.
@@ -187,8 +189,8 @@ pub fn pipeline(
             Ok(solved) => {
                 spent += solved.report.iterations_total;
                 notes.push(format!(
-                    "{what}: its mesh gave no honeycomb (omega_max {} deg); trying {}",
-                    rounded(solved.measures.omega_max_deg, 3),
+                    "{what}: its mesh gave no honeycomb ({}); trying {}",
+                    flaws(&solved.measures, None),
                     attempts[k + 1].1
                 ));
             }
@@ -316,8 +318,9 @@ pub struct Solved {
 }
 
 /// Solves a mesh the pipeline made (its boundary cells may be dropped): walls across S, else
-/// (when `fallback`) the guided projection; or why walls across gave no clean honeycomb and
-/// the iterations that took.
+/// (when `fallback`) the guided projection or, where that is no honeycomb, the unclean walls
+/// across that are one; or why walls across gave no clean honeycomb and the iterations that
+/// took.
 #[allow(clippy::type_complexity)]
 fn solve_made(
     made: &Initialized,
@@ -549,7 +552,8 @@ fn across_or_none(
         progress(Step::Iteration("repairing", 1, info))
     })?;
     spent += repair_iterations;
-    let (dropped, field_iterations) = (across.dropped_cells, across.field_iterations);
+    let (dropped, trimmed) = (across.dropped_cells, across.trimmed_cells);
+    let field_iterations = across.field_iterations;
     let seconds = start.elapsed().as_secs_f64();
     let mut solved = across_solved(across, options, seconds);
     solved.report.iterations_total = spent;
@@ -559,6 +563,7 @@ fn across_or_none(
             solved.report.walls = Walls::Across;
             solved.report.iterations_total = spent;
             solved.report.dropped_boundary_cells = Some(dropped);
+            solved.report.trimmed_boundary_cells = Some(trimmed);
             solved.report.axis_field_iterations = Some(field_iterations);
             solved.notes.push(format!(
                 "{why}; {repair_iterations} iterations of the guided projection from there \
@@ -831,22 +836,23 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
     report.walls = Walls::Across;
     report.iterations_total = optimized.solve.iterations;
     report.dropped_boundary_cells = Some(across.dropped_cells);
+    report.trimmed_boundary_cells = Some(across.trimmed_cells);
     report.axis_field_iterations = Some(across.field_iterations);
     let mut notes = Vec::new();
     let broken = across.dropped_cells - across.trimmed_cells;
     let were = |n: usize| if n == 1 { "was" } else { "were" };
     if broken > 0 {
         notes.push(format!(
-            "{} whose walls the fitted axes crossed or turned over {} dropped; initial.obj \
-             is the mesh without them",
+            "{} whose walls the fitted axes crossed or turned over (or that their loss cut \
+             off) {} dropped; initial.obj is the mesh without them",
             cells(broken, "boundary cell"),
             were(broken)
         ));
     }
     if across.trimmed_cells > 0 {
         notes.push(format!(
-            "{} that stood out beyond S's border {} trimmed; initial.obj is the mesh without \
-             them",
+            "{} that stood out beyond S's border (or that their loss cut off) {} trimmed; \
+             initial.obj is the mesh without them",
             cells(across.trimmed_cells, "boundary cell"),
             were(across.trimmed_cells)
         ));
@@ -912,8 +918,8 @@ fn guided(
     }
     if s.dropped_cells > 0 {
         notes.push(format!(
-            "{} that the solve broke (collapsed cap, mirrored node or crossed wall) {} \
-             dropped; initial.obj is the mesh without them",
+            "{} that the solve broke (collapsed cap, mirrored node or crossed wall, or that \
+             their loss cut off) {} dropped; initial.obj is the mesh without them",
             cells(s.dropped_cells, "boundary cell"),
             if s.dropped_cells == 1 { "was" } else { "were" }
         ));

@@ -1,6 +1,7 @@
 //! A honeycomb whose node axes follow S's normals as closely as a honeycomb allows: the sheet
 //! fitted to the normals, the base mesh placed on its walls, and boundary cells that placement
-//! breaks dropped (the sheet of the rest is the same sheet, so placement alone is repeated).
+//! breaks dropped (the sheet of the rest starts from the same points and is fitted again), and
+//! the cells that stand out beyond S's border trimmed.
 
 use super::{fit_axis_field, place, trim_overhang, AxisFieldOptions, PlacementOptions, Sheet};
 use crate::error::Result;
@@ -156,8 +157,8 @@ pub fn walls_across(
             }
             return trim_overhang(across, options.max_trimmed_share, model_surface);
         }
-        // The same sheet without the broken cells: each dropped cell's point becomes the ghost
-        // of the walls it bordered.
+        // The sheet's points without the broken cells: each dropped cell's point becomes the
+        // ghost of the walls it bordered.
         let kept = kept_vertices(&mesh, &broken);
         let rest = without_cells(&mesh, &broken);
         let rest_conn = validate_base_mesh(&rest)?;

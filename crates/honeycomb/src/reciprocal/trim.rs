@@ -24,7 +24,10 @@ pub fn trim_overhang(across: Across, max_share: f64, surface: &Surface) -> Resul
     if trimmed.is_empty() {
         return Ok(across);
     }
-    let (honeycomb, connectivity) = without_honeycomb_cells(h, &trimmed)?;
+    // Geometry the mesh checks refuse (a cell left too thin) keeps the untrimmed result.
+    let Ok((honeycomb, connectivity)) = without_honeycomb_cells(h, &trimmed) else {
+        return Ok(across);
+    };
     let measures = measure(&honeycomb, surface);
     Ok(Across {
         base: without_cells(&across.base, &trimmed),
@@ -39,7 +42,8 @@ pub fn trim_overhang(across: Across, max_share: f64, surface: &Surface) -> Resul
 
 /// The boundary cells of `h` that hold a vertex off S (farther than [`ON_S`] by `m`), with
 /// the few cells their loss would cut off (sorted): all of them, when they are at most
-/// `max_share` of the cells and can go without cutting a lobe off the rest; else none.
+/// `max_share` of the cells, can go without cutting a lobe off the rest and take every vertex
+/// off S with them; else none.
 pub fn overhanging_cells(
     h: &Honeycomb,
     conn: &Connectivity,
@@ -59,12 +63,19 @@ pub fn overhanging_cells(
         return Vec::new();
     }
     let trimmed = keeping_one_piece(conn, cells, &overhanging);
-    // A cell kept for the structure's sake would still stand out: no use trimming the others.
+    // A cell kept for the structure's sake, or a vertex off S that a kept cell holds, would
+    // still stand out: no use trimming the others.
     if trimmed.len() > allowed
         || overhanging
             .iter()
             .any(|f| trimmed.binary_search(f).is_err())
     {
+        return Vec::new();
+    }
+    let kept_cell_off_s = (0..cells)
+        .filter(|f| trimmed.binary_search(f).is_err())
+        .any(|f| h.base.faces[f].iter().any(off_s));
+    if kept_cell_off_s {
         return Vec::new();
     }
     trimmed
@@ -134,5 +145,25 @@ mod tests {
         let share = 2.0 / h.base.faces.len() as f64;
         assert!(overhanging_cells(&out, &conn, &m, share).is_empty());
         assert!(!overhanging_cells(&out, &conn, &m, 0.5).is_empty());
+        // A vertex of a boundary cell and of an inner one, off S: the inner cell keeps it.
+        let boundary_cell = |f: usize| conn.face_edges[f].iter().any(|&e| conn.is_boundary_edge(e));
+        let faces = &h.base.faces;
+        let cells_of = |v: usize| -> Vec<usize> {
+            (0..faces.len())
+                .filter(|&f| faces[f].contains(&v))
+                .collect()
+        };
+        let inner = (0..h.base.vertices.len())
+            .find(|&v| {
+                let cells = cells_of(v);
+                cells.iter().any(|&f| boundary_cell(f)) && cells.iter().any(|&f| !boundary_cell(f))
+            })
+            .unwrap();
+        let mut base = h.base.clone();
+        base.vertices[inner].z += 0.5 * base.mean_edge_length();
+        let out = Honeycomb::new(base, &conn, h.axes.clone(), h.thickness);
+        let m = measure(&out, &surface);
+        assert!(m.closeness_max > ON_S);
+        assert!(overhanging_cells(&out, &conn, &m, 0.5).is_empty());
     }
 }

@@ -270,9 +270,13 @@ impl OutputDir {
         })
     }
 
-    /// What happens to the earlier folder, when the user should know: it held files no run
-    /// writes, so it is kept as `DIR.previous`.
-    pub fn note(&self) -> Option<String> {
+    /// What happens to the earlier folder under `verdict`, when the user should know: it held
+    /// files no run writes, so a passed run keeps it as `DIR.previous` (a failed one leaves
+    /// it as it is).
+    pub fn note(&self, verdict: Verdict) -> Option<String> {
+        if verdict == Verdict::Failed {
+            return None;
+        }
         self.foreign.as_ref().map(|f| {
             format!(
                 "{} held files no run writes (such as {f}): the earlier folder is kept as {}",
@@ -565,7 +569,8 @@ mod tests {
         write_output_dir(&dir, Verdict::Passed, fill_with(&first)).unwrap();
         std::fs::write(dir.join("thesis.tex"), "mine").unwrap();
         let out = OutputDir::begin(&dir, &[]).unwrap();
-        assert!(out.note().unwrap().contains("thesis.tex"));
+        assert!(out.note(Verdict::Failed).is_none());
+        assert!(out.note(Verdict::Passed).unwrap().contains("thesis.tex"));
         out.finish(Verdict::Passed, fill_with(&[("report.json", "2")]))
             .unwrap();
         assert_eq!(names(&dir), ["report.json"]);
