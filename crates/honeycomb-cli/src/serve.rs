@@ -2,7 +2,7 @@
 
 use crate::optimize::name_file;
 use crate::progress::{Output, Spinner};
-use honeycomb::error::short_number;
+use honeycomb::error::rounded;
 use honeycomb::generate::Shape;
 use honeycomb::pipeline::Walls;
 use honeycomb::{Error, Result};
@@ -73,17 +73,12 @@ pub fn run(args: Args) -> Result<()> {
     };
     let surface_input = args.input.as_ref().is_some_and(|p| p.is_file());
     if let Some(t) = args.thickness {
-        if !t.is_finite() || t <= 0.0 {
-            return Err(Error::Parameter(format!(
-                "--thickness {}: expected a positive length in model units",
-                short_number(t)
-            )));
-        }
+        honeycomb::error::check_positive_length("--thickness", t)?;
         if args.input.as_ref().is_some_and(|p| p.is_dir()) {
             return Err(Error::Parameter(format!(
                 "--thickness {}: a structure directory is edited at the thickness it was made \
                  with (its structure.json); --thickness is for a design surface or the demo",
-                short_number(t)
+                rounded(t, 6)
             )));
         }
     }

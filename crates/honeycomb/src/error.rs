@@ -103,6 +103,17 @@ fn coordinates(v: crate::Vec3, digits: usize, separator: &str) -> String {
     v.to_array().map(|c| rounded(c, digits)).join(separator)
 }
 
+/// `length`, which `label` names (a flag or a word), must be a finite positive length.
+pub fn check_positive_length(label: &str, length: f64) -> Result<()> {
+    if !length.is_finite() || length <= 0.0 {
+        return Err(Error::Parameter(format!(
+            "{label} {}: expected a positive length in model units",
+            rounded(length, 6)
+        )));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::{about, rounded, rounded_down, short_number};

@@ -23,7 +23,7 @@ pub use flatten::{flatten, flatten_viewed, Distortion, Flattener, Flattening, Po
 pub use lattice::{Corner, Lattice};
 pub use strokes::{read_strokes, sixfold_mean};
 
-use crate::error::{about, rounded, rounded_down, short_number, Error, Result};
+use crate::error::{about, rounded, rounded_down, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::surface::Surface;
@@ -200,12 +200,7 @@ impl InitOptions {
             CellSize::Cells(n) if n == 0 || n > MAX_CELLS => Err(Error::Parameter(format!(
                 "--cells {n}: expected 1 to {MAX_CELLS}"
             ))),
-            CellSize::EdgeLength(l) if !l.is_finite() || l <= 0.0 => {
-                Err(Error::Parameter(format!(
-                    "--edge-length {}: expected a positive length in model units",
-                    short_number(l)
-                )))
-            }
+            CellSize::EdgeLength(l) => crate::error::check_positive_length("--edge-length", l),
             _ => Ok(()),
         }
     }

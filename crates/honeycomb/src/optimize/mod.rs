@@ -92,18 +92,7 @@ pub const DEFAULT_THICKNESS: f64 = 0.3;
 
 /// A distance between M and M' (model units) must be a positive length.
 pub fn check_thickness(t: f64) -> Result<()> {
-    check_positive_length("thickness", t)
-}
-
-/// `length`, which `label` names, must be a positive length.
-fn check_positive_length(label: &str, length: f64) -> Result<()> {
-    if !length.is_finite() || length <= 0.0 {
-        return Err(Error::Parameter(format!(
-            "{label} {}: expected a positive length in model units",
-            rounded(length, 6)
-        )));
-    }
-    Ok(())
+    crate::error::check_positive_length("thickness", t)
 }
 
 /// How [`OptimizeOptions::validate`] names the lengths it checks: the thickness, the
@@ -203,11 +192,11 @@ impl OptimizeOptions {
         crate::limits::check_solve(base, self.solver.max_iterations)?;
         let edge = base.mean_edge_length();
         if let Some(t) = self.thickness {
-            check_positive_length(thickness, t)?;
+            crate::error::check_positive_length(thickness, t)?;
             check_scale(thickness, t, MAX_LENGTH, edge)?;
         }
         if let Some(length) = self.min_edge {
-            check_positive_length(min_edge, length)?;
+            crate::error::check_positive_length(min_edge, length)?;
             check_scale(min_edge, length, MAX_MIN_EDGE, edge)?;
         }
         if let Some(p) = &self.parallel {

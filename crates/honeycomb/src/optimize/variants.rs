@@ -36,12 +36,7 @@ impl ParallelOptions {
     /// flags).
     pub fn validate_as(&self, [depth, weight, depth_weight]: [&str; 3]) -> Result<()> {
         if let Some(c) = self.depth {
-            if !c.is_finite() || c <= 0.0 {
-                return Err(Error::Parameter(format!(
-                    "{depth} {}: expected a positive length in model units",
-                    crate::error::rounded(c, 6)
-                )));
-            }
+            crate::error::check_positive_length(depth, c)?;
         }
         check_weight(weight, self.weight, false)?;
         check_weight(depth_weight, self.depth_weight, true)

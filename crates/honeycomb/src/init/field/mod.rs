@@ -53,12 +53,7 @@ pub fn field_hex_mesh(
     follow_boundary: bool,
     seed: u64,
 ) -> Result<PolyMesh> {
-    if !edge.is_finite() || edge <= 0.0 {
-        return Err(Error::Parameter(format!(
-            "edge length {}: expected a positive length in model units",
-            rounded(edge, 6)
-        )));
-    }
+    crate::error::check_positive_length("edge length", edge)?;
     if let Some((k, _)) = strokes
         .iter()
         .enumerate()
