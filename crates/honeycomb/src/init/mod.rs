@@ -64,14 +64,23 @@ pub enum Method {
     Field,
 }
 
+impl Method {
+    /// The name `--method` takes.
+    pub fn label(self) -> &'static str {
+        match self {
+            Method::Flatten => "flatten",
+            Method::Field => "field",
+        }
+    }
+}
+
 impl FromStr for Method {
     type Err = String;
     fn from_str(s: &str) -> std::result::Result<Method, String> {
-        match s {
-            "flatten" => Ok(Method::Flatten),
-            "field" => Ok(Method::Field),
-            _ => Err(format!("unknown method '{s}': expected flatten or field")),
-        }
+        [Method::Flatten, Method::Field]
+            .into_iter()
+            .find(|m| m.label() == s)
+            .ok_or_else(|| format!("unknown method '{s}': expected flatten or field"))
     }
 }
 
@@ -342,7 +351,7 @@ fn too_long(surface: &PolyMesh, options: &InitOptions, l: f64, fits: Option<f64>
 /// with `options`, from [`edge_length_range`] and `fits` ([`largest_fitting_edge`]).
 fn working_range(surface: &PolyMesh, options: &InitOptions, fits: Option<f64>) -> String {
     let (shortest, longest) = edge_length_range(surface);
-    let method = format!("{:?}", options.method).to_lowercase();
+    let method = options.method.label();
     match fits {
         Some(fits) => format!(
             "{} to {} model units (the longest that lays cells by the {method} method)",
@@ -407,7 +416,7 @@ fn made_or_too_long(
                      longest edge length found that lays cells by the {} method, does",
                     rounded(l, 6),
                     rounded(fits, 6),
-                    format!("{:?}", options.method).to_lowercase()
+                    options.method.label()
                 ))),
                 None => Err(Error::Mesh(m)),
             }
