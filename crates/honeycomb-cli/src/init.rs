@@ -202,7 +202,12 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
     check_solve_cells(&init, &surface).map_err(|e| name_file(&args.surface, e))?;
-    let out = OutputDir::begin(&args.output, &[args.surface.as_path()])?;
+    let strokes = Path::new(&args.init.align);
+    let mut inputs = vec![args.surface.as_path()];
+    if strokes.is_file() {
+        inputs.push(strokes);
+    }
+    let out = OutputDir::begin(&args.output, &inputs)?;
     let options = PipelineOptions {
         init,
         init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,

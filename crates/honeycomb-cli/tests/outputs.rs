@@ -747,3 +747,35 @@ fn an_output_directory_of_other_files_is_not_replaced() {
     assert_eq!(entries(&mine), ["notes.txt"]);
     assert_eq!(entries(&dir.path), ["base.obj", "mine"]);
 }
+
+/// An input inside -o would be lost when the run's folder takes DIR's place: the surface and
+/// the strokes file of `pipeline` alike.
+#[test]
+fn pipeline_refuses_an_output_folder_holding_its_inputs() {
+    let dir = TempDir::new("pipeline_refuses_an_output_folder_holding_its_inputs");
+    let out = dir.join("out");
+    assert_success(&small_demo(&out, &["-q"]), "demo");
+    let surface = out.join("surface.obj");
+    let strokes = out.join("strokes.obj");
+    std::fs::write(&strokes, "v -1 0 0\nv 1 0 0\nl 1 2\n").unwrap();
+    let outside = dir.join("surface.obj");
+    std::fs::copy(&surface, &outside).unwrap();
+    for (input, align) in [
+        (&surface, "boundary"),
+        (&outside, strokes.to_str().unwrap()),
+    ] {
+        let output = run([
+            "pipeline".as_ref(),
+            input.as_os_str(),
+            "--cells".as_ref(),
+            "40".as_ref(),
+            "--align".as_ref(),
+            align.as_ref(),
+            "-q".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+        assert_clean_failure(&output, &["holds the input"], None);
+    }
+    assert!(strokes.is_file() && surface.is_file());
+}
