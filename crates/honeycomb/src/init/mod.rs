@@ -239,14 +239,17 @@ const FITTING_DIGITS: usize = 4;
 const FITTING_STEP: f64 = 0.8;
 /// It gives up below this share of the top of the range (ten thousand cells' worth).
 const FITTING_BOTTOM: f64 = 0.01;
+/// It tries sizes for this many seconds at most.
+const FITTING_SECONDS: f64 = 2.0;
 
 /// The longest edge length found (to [`FITTING_DIGITS`] significant digits, and within
 /// [`edge_length_range`]) at which `init` with `options` lays a base mesh on `surface`, or
-/// `None` when none down to a hundredth of the range's top does. Found by trying, from the
-/// top down and then by halving: cells longer than the surface's outline holds fit nowhere,
-/// and where the longest that fit lie depends on the outline, the flattening and the lattice
-/// (a size that misses between two that fit can hide a longer one). Deterministic for
-/// `options`; the sizes tried make few cells, each a quick `init`.
+/// `None` when none down to a hundredth of the range's top does within [`FITTING_SECONDS`].
+/// Found by trying, from the top down and then by halving: cells longer than the surface's
+/// outline holds fit nowhere, and where the longest that fit lie depends on the outline, the
+/// flattening and the lattice (a size that misses between two that fit can hide a longer
+/// one). Deterministic for `options` unless the time runs out; the sizes tried make few
+/// cells, each a quick `init`.
 pub fn largest_fitting_edge(surface: &PolyMesh, options: &InitOptions) -> Option<f64> {
     let (shortest, longest) = edge_length_range(surface);
     let start = Instant::now();
@@ -255,16 +258,20 @@ pub fn largest_fitting_edge(surface: &PolyMesh, options: &InitOptions) -> Option
         ..options.clone()
     };
     let bottom = shortest.max(FITTING_BOTTOM * longest);
+    // Only a message waits for the answer: sizes past the budget count as not fitting.
+    let in_time = || start.elapsed().as_secs_f64() < FITTING_SECONDS;
     match options.method {
         Method::Field => search_down(longest, bottom, |edge| {
-            init_field(surface, &sized(edge), start).is_ok()
+            in_time() && init_field(surface, &sized(edge), start).is_ok()
         }),
         Method::Flatten => {
             let (vertices, triangles) = surface.star_triangulated();
             let flat =
                 flatten_viewed(&vertices, &triangles, options.flattener, options.view).ok()?;
             search_down(longest, bottom, |edge| {
-                lay_lattice(surface, &vertices, &triangles, &flat, &sized(edge), start).is_ok()
+                in_time()
+                    && lay_lattice(surface, &vertices, &triangles, &flat, &sized(edge), start)
+                        .is_ok()
             })
         }
     }
