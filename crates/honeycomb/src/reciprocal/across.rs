@@ -155,7 +155,11 @@ pub fn walls_across(
             if options.max_drops == 0 {
                 return Ok(across);
             }
-            return trim_overhang(across, options.max_trimmed_share, model_surface);
+            return Ok(trim_overhang(
+                across,
+                options.max_trimmed_share,
+                model_surface,
+            ));
         }
         // The sheet's points without the broken cells: each dropped cell's point becomes the
         // ghost of the walls it bordered.

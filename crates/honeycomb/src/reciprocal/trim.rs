@@ -18,18 +18,18 @@ pub const ON_S: f64 = 0.05;
 
 /// `across` without the cells [`overhanging_cells`] lists (with at most `max_share` of the
 /// cells), measured again on `surface`.
-pub fn trim_overhang(across: Across, max_share: f64, surface: &Surface) -> Result<Across> {
+pub fn trim_overhang(across: Across, max_share: f64, surface: &Surface) -> Across {
     let (h, conn, m) = (&across.honeycomb, &across.connectivity, &across.measures);
     let trimmed = overhanging_cells(h, conn, m, max_share);
     if trimmed.is_empty() {
-        return Ok(across);
+        return across;
     }
     // Geometry the mesh checks refuse (a cell left too thin) keeps the untrimmed result.
     let Ok((honeycomb, connectivity)) = without_honeycomb_cells(h, &trimmed) else {
-        return Ok(across);
+        return across;
     };
     let measures = measure(&honeycomb, surface);
-    Ok(Across {
+    Across {
         base: without_cells(&across.base, &trimmed),
         honeycomb,
         connectivity,
@@ -37,7 +37,7 @@ pub fn trim_overhang(across: Across, max_share: f64, surface: &Surface) -> Resul
         dropped_cells: across.dropped_cells + trimmed.len(),
         trimmed_cells: across.trimmed_cells + trimmed.len(),
         ..across
-    })
+    }
 }
 
 /// The boundary cells of `h` that hold a vertex off S (farther than [`ON_S`] by `m`), with
