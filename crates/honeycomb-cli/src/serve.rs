@@ -127,6 +127,7 @@ pub fn run(args: Args) -> Result<()> {
         Some(path) => server.map_err(|e| name_file(path, e))?,
         None => server?,
     };
+    crate::optimize::print_notes(&server.notes, output);
     // The address on stdout, alone on its line: scripts and the tests read it from there.
     if output == Output::Json {
         println!(

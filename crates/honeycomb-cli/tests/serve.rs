@@ -160,3 +160,57 @@ fn serve_json_prints_its_address_as_json() {
     s.read_to_string(&mut page).unwrap();
     assert!(page.starts_with("HTTP/1.1 200") && page.contains("honeycomb"));
 }
+
+/// A surface's notes (here: uniform walls on a vault that folds over seen along its mean
+/// normal) go to stderr, and not with --quiet.
+#[test]
+fn serve_says_what_the_pipeline_changed_unless_quiet() {
+    let dir = TempDir::new("serve-notes");
+    // A vault over 216 degrees of arc.
+    let (n, m) = (36, 6);
+    let mut obj = String::new();
+    for j in 0..=n {
+        let a = std::f64::consts::PI * (-0.1 + 1.2 * j as f64 / n as f64);
+        for i in 0..=m {
+            obj += &format!("v {} {} {}\n", 3.0 * a.cos(), i as f64, 3.0 * a.sin());
+        }
+    }
+    let v = |i: usize, j: usize| j * (m + 1) + i + 1;
+    for j in 0..n {
+        for i in 0..m {
+            let (a, b, c, d) = (v(i, j), v(i, j + 1), v(i + 1, j + 1), v(i + 1, j));
+            obj += &format!("f {a} {b} {c} {d}\n");
+        }
+    }
+    let vault = dir.write("vault.obj", &obj);
+    for quiet in [false, true] {
+        let mut args = vec![
+            "serve", "--port", "0", "--cells", "150", "--walls", "uniform",
+        ];
+        if quiet {
+            args.push("--quiet");
+        }
+        let mut child = Command::new(env!("CARGO_BIN_EXE_honeycomb"))
+            .args(&args)
+            .arg(&vault)
+            .arg("--saves")
+            .arg(dir.join("saves"))
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let stdout = child.stdout.take().unwrap();
+        let mut stderr = child.stderr.take().unwrap();
+        let mut line = String::new();
+        BufReader::new(stdout).read_line(&mut line).unwrap();
+        assert!(line.starts_with("http://"), "{line}");
+        drop(Running(child));
+        let mut said = String::new();
+        std::io::Read::read_to_string(&mut stderr, &mut said).unwrap();
+        assert_eq!(
+            said.contains("note: seen along its mean normal"),
+            !quiet,
+            "quiet {quiet}: {said}"
+        );
+    }
+}

@@ -48,6 +48,8 @@ impl Default for ServeOptions {
 /// A running editor.
 pub struct Server {
     pub addr: SocketAddr,
+    /// What the pipeline changed on the way to the first honeycomb, for the front to show.
+    pub notes: Vec<String>,
     stop: Option<oneshot::Sender<()>>,
     http: Option<std::thread::JoinHandle<()>>,
 }
@@ -78,7 +80,7 @@ impl Server {
 /// Builds the workspace, solves it into a honeycomb, binds the port and starts serving. Errors
 /// (a bad input, a taken port) come back here, before anything is served.
 pub fn start(source: &Source, options: ServeOptions) -> Result<Server> {
-    let ws = source.workspace(options.thickness)?;
+    let (ws, notes) = source.workspace_with_notes(options.thickness)?;
     let listener = std::net::TcpListener::bind((options.host, options.port)).map_err(|e| {
         Error::Parameter(format!(
             "cannot listen on {}:{}: {e}",
@@ -145,6 +147,7 @@ pub fn start(source: &Source, options: ServeOptions) -> Result<Server> {
         .map_err(|e| Error::Parameter(format!("cannot start the server thread: {e}")))?;
     Ok(Server {
         addr,
+        notes,
         stop: Some(stop_tx),
         http: Some(http),
     })

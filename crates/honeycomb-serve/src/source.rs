@@ -58,16 +58,25 @@ impl Source {
     }
 
     pub fn workspace(&self, thickness: Option<f64>) -> Result<Workspace> {
+        self.workspace_with_notes(thickness).map(|(ws, _)| ws)
+    }
+
+    /// [`Source::workspace`], with what the pipeline changed on the way to it (a surface's
+    /// notes), for the front to show.
+    pub fn workspace_with_notes(&self, thickness: Option<f64>) -> Result<(Workspace, Vec<String>)> {
         match self {
             Source::Demo { shape, vertices } => {
                 check_solve_vertices(&format!("--vertices {vertices}"), *vertices)?;
                 let (base, surface) = lifted_hex_patch(*shape, *vertices);
-                Workspace::new(&base, Some(&surface), thickness)
+                Ok((
+                    Workspace::new(&base, Some(&surface), thickness)?,
+                    Vec::new(),
+                ))
             }
             Source::Structure(dir) => {
                 let (h, _) = read_structure(dir)?;
                 let surface = structure_surface(dir)?;
-                Workspace::from_honeycomb(&h, surface.as_ref())
+                Ok((Workspace::from_honeycomb(&h, surface.as_ref())?, Vec::new()))
             }
             Source::Surface { path, cells, walls } => {
                 let surface = read_mesh(path)?.mesh;
@@ -77,9 +86,6 @@ impl Source {
                 options.walls = *walls;
                 options.optimize.thickness = thickness;
                 let made = pipeline(&surface, &options, &mut |_| {})?;
-                for note in &made.notes {
-                    eprintln!("note: {note}");
-                }
                 if !made.report.honeycomb {
                     let m = &made.measures;
                     return Err(Error::Solver(format!(
@@ -90,7 +96,8 @@ impl Source {
                         honeycomb::error::rounded(m.delta_max, 3)
                     )));
                 }
-                Workspace::from_honeycomb(&made.optimized.honeycomb, Some(&surface))
+                let ws = Workspace::from_honeycomb(&made.optimized.honeycomb, Some(&surface))?;
+                Ok((ws, made.notes))
             }
         }
     }
