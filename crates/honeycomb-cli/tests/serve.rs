@@ -26,6 +26,20 @@ impl Drop for Running {
     }
 }
 
+/// `honeycomb` with `args`, then `more`, its stdout and stderr piped; the stdout to read the
+/// address from.
+fn serve(args: &[&str], more: &[&std::ffi::OsStr]) -> (Child, std::process::ChildStdout) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_honeycomb"))
+        .args(args)
+        .args(more)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stdout = child.stdout.take().unwrap();
+    (child, stdout)
+}
+
 fn missing_piece() -> Option<String> {
     let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
     if !Path::new(&chromium).exists() {
@@ -128,22 +142,17 @@ fn serve_refuses_what_it_cannot_open() {
 #[test]
 fn serve_json_prints_its_address_as_json() {
     let dir = TempDir::new("serve-json");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_honeycomb"))
-        .args([
-            "serve",
-            "--port",
-            "0",
-            "--json",
-            "--vertices",
-            "300",
-            "--saves",
-        ])
-        .arg(dir.join("saves"))
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    let stdout = child.stdout.take().unwrap();
+    let saves = dir.join("saves");
+    let args = [
+        "serve",
+        "--port",
+        "0",
+        "--json",
+        "--vertices",
+        "300",
+        "--saves",
+    ];
+    let (child, stdout) = serve(&args, &[saves.as_os_str()]);
     let _server = Running(child);
     let mut line = String::new();
     BufReader::new(stdout).read_line(&mut line).unwrap();
@@ -190,16 +199,9 @@ fn serve_says_what_the_pipeline_changed_unless_quiet() {
         if quiet {
             args.push("--quiet");
         }
-        let mut child = Command::new(env!("CARGO_BIN_EXE_honeycomb"))
-            .args(&args)
-            .arg(&vault)
-            .arg("--saves")
-            .arg(dir.join("saves"))
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        let stdout = child.stdout.take().unwrap();
+        let saves = dir.join("saves");
+        let more = [vault.as_os_str(), "--saves".as_ref(), saves.as_os_str()];
+        let (mut child, stdout) = serve(&args, &more);
         let mut stderr = child.stderr.take().unwrap();
         let mut line = String::new();
         BufReader::new(stdout).read_line(&mut line).unwrap();
