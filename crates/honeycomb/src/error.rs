@@ -57,21 +57,24 @@ pub fn short_number(x: f64) -> String {
 /// `x` rounded to `digits` significant digits, shown as [`short_number`] shows it: 0.3398,
 /// 339.8, 3.398e-7.
 pub fn rounded(x: f64, digits: usize) -> String {
-    let text = format!("{x:.*e}", digits.max(1) - 1);
-    short_number(text.parse().unwrap_or(x))
+    short_number(significant(x, digits))
+}
+
+/// `x` to `digits` significant digits, as a number.
+fn significant(x: f64, digits: usize) -> f64 {
+    format!("{x:.*e}", digits.max(1) - 1).parse().unwrap_or(x)
 }
 
 /// `x` rounded down to `digits` significant digits: the largest number of that many digits
 /// (as [`rounded`] shows it) that is at most `x`, for a bound a message offers as one that holds.
 pub fn rounded_down(x: f64, digits: usize) -> f64 {
-    let round = |y: f64| -> f64 { format!("{y:.*e}", digits.max(1) - 1).parse().unwrap_or(y) };
-    let r = round(x);
+    let r = significant(x, digits);
     if !x.is_finite() || r <= x {
         return r;
     }
     // Rounded up: one unit of the last digit less.
     let unit = 10f64.powi(x.abs().log10().floor() as i32 + 1 - digits.max(1) as i32);
-    round(r - unit).min(x)
+    significant(r - unit, digits).min(x)
 }
 
 /// An estimated count as a message shows it: `about 384900 cells`, `about 1.5e12 cells`, and
@@ -83,7 +86,7 @@ pub fn about(count: f64, things: &str) -> String {
         format!("about {count:.0} {things}")
     } else {
         // `{:e}`: `{:?}` writes out every digit below 1e16.
-        let three_digits: f64 = rounded(count, 3).parse().unwrap_or(count);
+        let three_digits = significant(count, 3);
         format!("about {three_digits:e} {things}")
     }
 }
