@@ -943,11 +943,7 @@ fn report(
         *cells_by_sides.entry(f.len()).or_insert(0) += 1;
     }
     let interior: Vec<usize> = (0..base.faces.len())
-        .filter(|&f| {
-            conn.face_edges[f]
-                .iter()
-                .all(|&e| !conn.is_boundary_edge(e))
-        })
+        .filter(|&f| !conn.is_boundary_face(f))
         .collect();
     let interior_hexagons = interior
         .iter()

@@ -228,6 +228,11 @@ impl Connectivity {
     pub fn is_boundary_edge(&self, e: usize) -> bool {
         self.edge_faces[e][1].is_none()
     }
+
+    /// Whether face `f` has an edge on the boundary.
+    pub fn is_boundary_face(&self, f: usize) -> bool {
+        self.face_edges[f].iter().any(|&e| self.is_boundary_edge(e))
+    }
 }
 
 #[cfg(test)]

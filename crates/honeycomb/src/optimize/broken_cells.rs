@@ -54,21 +54,20 @@ pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -
             || m.omega_per_node[a] > BROKEN_NODE_DEG
             || m.omega_per_node[b] > BROKEN_NODE_DEG
     };
-    let on_boundary = |f: usize| conn.face_edges[f].iter().any(|&e| conn.is_boundary_edge(e));
     let holds_broken = |f: usize| conn.face_edges[f].iter().any(|&e| broken_edge(e));
     let mut broken = vec![false; h.base.faces.len()];
     for f in 0..h.base.faces.len() {
         if !holds_broken(f) {
             continue;
         }
-        if on_boundary(f) {
+        if conn.is_boundary_face(f) {
             broken[f] = true;
         } else {
             // An inner cell next to the boundary is broken by its boundary neighbours'
             // twist (walls crossed where the axes lean together): they go instead.
             for &e in &conn.face_edges[f] {
                 for g in conn.edge_faces[e].iter().flatten().copied() {
-                    if on_boundary(g) {
+                    if conn.is_boundary_face(g) {
                         broken[g] = true;
                     }
                 }
@@ -255,10 +254,7 @@ mod tests {
         let cell = conn.edge_faces[cap][0].unwrap();
         assert!(broken.contains(&cell), "{broken:?} lacks cell {cell}");
         for &f in &broken {
-            assert!(
-                conn.face_edges[f].iter().any(|&e| conn.is_boundary_edge(e)),
-                "interior cell {f} listed"
-            );
+            assert!(conn.is_boundary_face(f), "interior cell {f} listed");
         }
         assert!(broken.len() < 4, "{broken:?}");
     }

@@ -53,10 +53,7 @@ pub fn overhanging_cells(
     let cells = h.base.faces.len();
     let off_s = |v: &usize| m.closeness_per_vertex[*v] > ON_S;
     let overhanging: Vec<usize> = (0..cells)
-        .filter(|&f| {
-            let on_boundary = conn.face_edges[f].iter().any(|&e| conn.is_boundary_edge(e));
-            on_boundary && h.base.faces[f].iter().any(off_s)
-        })
+        .filter(|&f| conn.is_boundary_face(f) && h.base.faces[f].iter().any(off_s))
         .collect();
     let allowed = (max_share * cells as f64).floor() as usize;
     if overhanging.is_empty() || overhanging.len() > allowed {
@@ -146,7 +143,6 @@ mod tests {
         assert!(overhanging_cells(&out, &conn, &m, share).is_empty());
         assert!(!overhanging_cells(&out, &conn, &m, 0.5).is_empty());
         // A vertex of a boundary cell and of an inner one, off S: the inner cell keeps it.
-        let boundary_cell = |f: usize| conn.face_edges[f].iter().any(|&e| conn.is_boundary_edge(e));
         let faces = &h.base.faces;
         let cells_of = |v: usize| -> Vec<usize> {
             (0..faces.len())
@@ -156,7 +152,8 @@ mod tests {
         let inner = (0..h.base.vertices.len())
             .find(|&v| {
                 let cells = cells_of(v);
-                cells.iter().any(|&f| boundary_cell(f)) && cells.iter().any(|&f| !boundary_cell(f))
+                cells.iter().any(|&f| conn.is_boundary_face(f))
+                    && cells.iter().any(|&f| !conn.is_boundary_face(f))
             })
             .unwrap();
         let mut base = h.base.clone();
