@@ -388,6 +388,7 @@ pub fn solve_base(
     if walls == Walls::Across {
         let keep_cells = AcrossOptions {
             max_drops: 0,
+            max_trimmed_share: 0.0,
             ..AcrossOptions::default()
         };
         match across_or_none(

@@ -23,7 +23,7 @@ pub struct AcrossOptions {
     /// At most this share of the cells is dropped.
     pub max_dropped_share: f64,
     /// At most this share of the cells is trimmed where it stands out beyond S's border
-    /// ([`trim_overhang`]; none when `max_drops` is 0).
+    /// ([`trim_overhang`]).
     pub max_trimmed_share: f64,
 }
 
@@ -152,9 +152,6 @@ pub fn walls_across(
                 solve: solves.take().expect("a solve ran"),
                 field_converged,
             };
-            if options.max_drops == 0 {
-                return Ok(across);
-            }
             return Ok(trim_overhang(
                 across,
                 options.max_trimmed_share,
