@@ -233,8 +233,17 @@ fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
 }
 
 /// `n` things, in words: "1 boundary cell", "3 boundary cells".
-fn cells(n: usize, thing: &str) -> String {
+fn counted(n: usize, thing: &str) -> String {
     format!("{n} {thing}{}", if n == 1 { "" } else { "s" })
+}
+
+/// The verb for `n` things: "1 cell was", "3 cells were".
+fn were(n: usize) -> &'static str {
+    if n == 1 {
+        "was"
+    } else {
+        "were"
+    }
 }
 
 /// An error's message without its kind (for a note).
@@ -533,11 +542,9 @@ fn across_or_none(
         }
         Err(e) => return Err(e),
     };
-    let mut notes = Vec::new();
-    if options.thickness.is_none() {
-        let (h, m) = (&mut across.honeycomb, &mut across.measures);
-        notes.extend(uncross(h, &across.connectivity, m, model_surface));
-    }
+    let (h, m) = (&mut across.honeycomb, &mut across.measures);
+    let thinner = uncross(h, &across.connectivity, m, model_surface, options.thickness);
+    let mut notes: Vec<String> = thinner.into_iter().collect();
     if is_clean(&across.measures, options.min_edge) {
         let mut solved = across_solved(across, options, start.elapsed().as_secs_f64());
         solved.notes.append(&mut notes);
@@ -600,8 +607,7 @@ fn flaws(m: &Measures, min_edge: Option<f64>) -> String {
         flaws.push(format!("a wall {} off planar", rounded(m.delta_max, 3)));
     }
     if m.nonconvex_walls > 0 {
-        let n = m.nonconvex_walls;
-        flaws.push(format!("{n} crossed wall{}", if n == 1 { "" } else { "s" }));
+        flaws.push(counted(m.nonconvex_walls, "crossed wall"));
     }
     if m.closeness_max > ACROSS_CLOSENESS {
         flaws.push(format!(
@@ -633,15 +639,20 @@ fn is_clean(m: &Measures, min_edge: Option<f64>) -> bool {
 /// crossing itself.
 const MIN_THICKNESS: f64 = 0.1;
 
-/// A honeycomb at the default thickness whose wall quads cross (M''s edge running against M's,
-/// where two neighbouring axes lean together) made thinner, down to [`MIN_THICKNESS`] mean edge
-/// lengths, so that none does; a note says so.
+/// A honeycomb at the default thickness (`asked` is `None`) whose wall quads cross (M''s edge
+/// running against M's, where two neighbouring axes lean together) made thinner, down to
+/// [`MIN_THICKNESS`] mean edge lengths, so that none does; a note says so. A thickness the
+/// user asked for is kept.
 fn uncross(
     h: &mut crate::structure::Honeycomb,
     conn: &crate::mesh::Connectivity,
     measures: &mut Measures,
     surface: &Surface,
+    asked: Option<f64>,
 ) -> Option<String> {
+    if asked.is_some() {
+        return None;
+    }
     let unit = h.base.mean_edge_length();
     let (default, least) = (DEFAULT_THICKNESS * unit, MIN_THICKNESS * unit);
     let thickest = crate::structure::thickest_uncrossed(h);
@@ -688,18 +699,14 @@ fn repair(
         .min_edge
         .or(Some(REPAIR_MIN_EDGE * h.base.mean_edge_length()));
     repair.solver.max_iterations = REPAIR_ITERATIONS;
-    let optimized = match optimize(&h.base, Some(surface), &repair, progress) {
+    let mut optimized = match optimize(&h.base, Some(surface), &repair, progress) {
         Ok(optimized) => optimized,
         Err(Error::Solver(_)) => return Ok(None),
         Err(e) => return Err(e),
     };
     let mut measures = measure(&optimized.honeycomb, model_surface);
-    let mut optimized = optimized;
-    let mut thinner = None;
-    if options.thickness.is_none() {
-        let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
-        thinner = uncross(h, conn, &mut measures, model_surface);
-    }
+    let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
+    let thinner = uncross(h, conn, &mut measures, model_surface, options.thickness);
     Ok(is_clean(&measures, options.min_edge).then_some((optimized, measures, thinner)))
 }
 
@@ -813,6 +820,7 @@ fn curved_at_most(surface: &Surface, edge: f64, cells: f64, why: &str) -> Result
         (100.0 * MAX_CURVATURE_PER_CELL).round()
     )))
 }
+
 /// Walls across S as a solved honeycomb with its report.
 fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Solved {
     let frame = Frame::of(&across.base);
@@ -841,12 +849,11 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
     report.axis_field_iterations = Some(across.field_iterations);
     let mut notes = Vec::new();
     let broken = across.dropped_cells - across.trimmed_cells;
-    let were = |n: usize| if n == 1 { "was" } else { "were" };
     if broken > 0 {
         notes.push(format!(
             "{} whose walls the fitted axes crossed or turned over (or that their loss cut \
              off) {} dropped; initial.obj is the mesh without them",
-            cells(broken, "boundary cell"),
+            counted(broken, "boundary cell"),
             were(broken)
         ));
     }
@@ -854,7 +861,7 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
         notes.push(format!(
             "{} that stood out beyond S's border (or that their loss cut off) {} trimmed; \
              initial.obj is the mesh without them",
-            cells(across.trimmed_cells, "boundary cell"),
+            counted(across.trimmed_cells, "boundary cell"),
             were(across.trimmed_cells)
         ));
     }
@@ -898,11 +905,11 @@ fn guided(
         },
     )?;
     let mut s = made.settled;
-    let mut notes = Vec::new();
-    if options.optimize.thickness.is_none() {
-        let (h, conn) = (&mut s.optimized.honeycomb, &s.optimized.connectivity);
-        notes.extend(uncross(h, conn, &mut s.measures, model_surface));
-    }
+    let (h, conn) = (&mut s.optimized.honeycomb, &s.optimized.connectivity);
+    let asked = options.optimize.thickness;
+    let mut notes: Vec<String> = uncross(h, conn, &mut s.measures, model_surface, asked)
+        .into_iter()
+        .collect();
     if made.per_edge_fallback {
         notes.push(
             "the solve for one point per cell gave no honeycomb; this is the solve for one \
@@ -921,8 +928,8 @@ fn guided(
         notes.push(format!(
             "{} that the solve broke (collapsed cap, mirrored node or crossed wall, or that \
              their loss cut off) {} dropped; initial.obj is the mesh without them",
-            cells(s.dropped_cells, "boundary cell"),
-            if s.dropped_cells == 1 { "was" } else { "were" }
+            counted(s.dropped_cells, "boundary cell"),
+            were(s.dropped_cells)
         ));
     }
     let mut report = Report::new(&s.optimized, &s.measures, start.elapsed().as_secs_f64());
