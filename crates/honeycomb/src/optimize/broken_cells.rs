@@ -279,12 +279,6 @@ mod tests {
         let (_, _, m) = measured(&rest);
         assert!(m.omega_max_deg < 1e-9);
     }
-}
-
-#[cfg(test)]
-mod piece_tests {
-    use super::*;
-    use crate::generate::hex_disk;
 
     /// Two halves of a disk joined by one cell: that cell may not go, others may.
     #[test]
