@@ -242,6 +242,11 @@ const FITTING_BOTTOM: f64 = 0.01;
 /// It tries sizes for this many seconds at most.
 const FITTING_SECONDS: f64 = 2.0;
 
+/// The shortest edge [`largest_fitting_edge`] tries in the range `shortest` to `longest`.
+fn fitting_bottom(shortest: f64, longest: f64) -> f64 {
+    shortest.max(FITTING_BOTTOM * longest)
+}
+
 /// The longest edge length found (to [`FITTING_DIGITS`] significant digits, and within
 /// [`edge_length_range`]) at which `init` with `options` lays a base mesh on `surface`, or
 /// `None` when none down to a hundredth of the range's top does within [`FITTING_SECONDS`].
@@ -257,7 +262,7 @@ pub fn largest_fitting_edge(surface: &PolyMesh, options: &InitOptions) -> Option
         size: CellSize::EdgeLength(edge),
         ..options.clone()
     };
-    let bottom = shortest.max(FITTING_BOTTOM * longest);
+    let bottom = fitting_bottom(shortest, longest);
     // Only a message waits for the answer: sizes past the budget count as not fitting.
     let in_time = || start.elapsed().as_secs_f64() < FITTING_SECONDS;
     match options.method {
@@ -330,15 +335,35 @@ pub fn check_edge_length(surface: &PolyMesh, options: &InitOptions) -> Result<()
         let area = surface.area();
         let cells = area / hexagon_area(1.0) / l / l;
         return Err(Error::Parameter(format!(
-            "--edge-length {}: {} on a surface of area {}; expected at most {MAX_CELLS}: \
-             choose larger cells, {}",
-            rounded(l, 6),
-            about(cells, "cells"),
-            rounded(area, 6),
+            "{}: choose larger cells, {}",
+            too_many_cells("--edge-length", l, area, cells),
             working_range(surface, options, largest_fitting_edge(surface, options))
         )));
     }
     Ok(())
+}
+
+/// `label edge` (an option, or the words for it) makes `cells` cells on a surface of `area`,
+/// more than [`MAX_CELLS`], in words.
+fn too_many_cells(label: &str, edge: f64, area: f64, cells: f64) -> String {
+    format!(
+        "{label} {}: {} on a surface of area {}; expected at most {MAX_CELLS}",
+        rounded(edge, 6),
+        about(cells, "cells"),
+        rounded(area, 6)
+    )
+}
+
+/// No `cell` ("cell", "whole cell") of `edge` fits on a surface of `area`, which holds about
+/// `cells` of them.
+fn no_cell_fits(cell: &str, edge: f64, area: f64, cells: f64) -> Error {
+    Error::Mesh(format!(
+        "no {cell} of edge length {} fits on the surface (area {}, about {} cells): choose \
+         smaller cells",
+        rounded(edge, 6),
+        rounded(area, 6),
+        rounded(cells, 2)
+    ))
 }
 
 /// `--edge-length l`, which lays no cell on `surface`, refused with the range that does
@@ -369,7 +394,7 @@ fn working_range(surface: &PolyMesh, options: &InitOptions, fits: Option<f64>) -
             "from {}; none of {} down to {} model units lays cells on it by the {method} method",
             rounded(shortest, 6),
             rounded(longest, 6),
-            rounded(shortest.max(FITTING_BOTTOM * longest), 6)
+            rounded(fitting_bottom(shortest, longest), 6)
         ),
     }
 }
@@ -524,11 +549,11 @@ fn lay_lattice(
     let edge = options.size.edge_on(area);
     let fits = area / hexagon_area(edge);
     if fits > MAX_CELLS as f64 {
-        return Err(Error::Parameter(format!(
-            "--edge-length {}: {} on a surface of area {}; expected at most {MAX_CELLS}",
-            rounded(edge, 6),
-            about(fits, "cells"),
-            rounded(area, 6)
+        return Err(Error::Parameter(too_many_cells(
+            "--edge-length",
+            edge,
+            area,
+            fits,
         )));
     }
     let angle = lattice_angle(options, vertices, triangles, &flat.points)?;
@@ -559,13 +584,7 @@ fn lay_lattice(
         options.boundary,
     );
     if placed.is_empty() {
-        return Err(Error::Mesh(format!(
-            "no cell of edge length {} fits on the surface (area {}, about {} cells): \
-             choose smaller cells",
-            rounded(edge, 6),
-            rounded(area, 6),
-            rounded(fits, 2)
-        )));
+        return Err(no_cell_fits("cell", edge, area, fits));
     }
     // Each corner's position on S: through its triangle, or along its boundary edge.
     let to_surface = |p: &Placed| match p {

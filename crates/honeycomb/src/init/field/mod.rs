@@ -21,7 +21,7 @@ mod sampling;
 mod tangent;
 mod tidy;
 
-use crate::error::{about, rounded, Error, Result};
+use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, PolyMesh};
 use crate::surface::Surface;
@@ -68,23 +68,16 @@ pub fn field_hex_mesh(
     let area = surface.area();
     let cells = area / super::hexagon_area(edge);
     if cells > super::MAX_CELLS as f64 {
-        return Err(Error::Parameter(format!(
-            "edge length {}: {} on a surface of area {}; expected at most {}",
-            rounded(edge, 6),
-            about(cells, "cells"),
-            rounded(area, 6),
-            super::MAX_CELLS
+        return Err(Error::Parameter(super::too_many_cells(
+            "edge length",
+            edge,
+            area,
+            cells,
         )));
     }
     let fits = cells >= 1.0; // false for a NaN area too
     if !fits {
-        return Err(Error::Mesh(format!(
-            "no cell of edge length {} fits on the surface (area {}, about {} cells): \
-             choose smaller cells",
-            rounded(edge, 6),
-            rounded(area, 6),
-            rounded(cells, 2)
-        )));
+        return Err(super::no_cell_fits("cell", edge, area, cells));
     }
     let spacing = SQRT3 * edge;
     let sampling = Sampling::new(&s, SAMPLE_SPACING * spacing)?;
@@ -103,13 +96,7 @@ pub fn field_hex_mesh(
     tidy::tidy(&mut lattice, spacing);
     let hex = dual::hex_mesh(&lattice, &s, edge);
     if hex.faces.is_empty() {
-        return Err(Error::Mesh(format!(
-            "no whole cell of edge length {} fits on the surface (area {}, about {} \
-             cells): choose smaller cells",
-            rounded(edge, 6),
-            rounded(area, 6),
-            rounded(cells, 2)
-        )));
+        return Err(super::no_cell_fits("whole cell", edge, area, cells));
     }
     validate_base_mesh(&hex).map_err(|e| {
         Error::Mesh(format!(
