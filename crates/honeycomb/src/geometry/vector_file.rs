@@ -4,7 +4,7 @@
 
 use super::Vec3;
 use crate::error::{Error, Result};
-use crate::mesh::io::{read_file, strip_bom, text_lines};
+use crate::mesh::io::{read_file, text_lines};
 use std::path::Path;
 
 /// Every vector of the file with its 1-based line number. A line without exactly three numbers
@@ -23,8 +23,6 @@ pub fn read_vectors(path: &Path) -> Result<Vec<(usize, Vec3)>> {
             .count();
         bad(line, "not UTF-8 text".to_string())
     })?;
-    // As the mesh readers: a byte order mark is dropped, LF, CRLF and CR alone end lines.
-    let text = strip_bom(text);
     let mut vectors = Vec::new();
     for (index, raw) in text_lines(text).enumerate() {
         let line = index + 1;

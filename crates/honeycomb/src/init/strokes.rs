@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::Vec3;
-use crate::mesh::io::{read_file, strip_bom, text_lines};
+use crate::mesh::io::{read_file, text_lines};
 use std::path::Path;
 
 /// The polylines of an OBJ file's `l` records (1-based or negative indices into its `v`).
@@ -15,8 +15,6 @@ pub fn read_strokes(path: &Path) -> Result<Vec<Vec<Vec3>>> {
     };
     let bytes = read_file(path)?;
     let text = std::str::from_utf8(&bytes).map_err(|_| bad(0, "not UTF-8 text".into()))?;
-    // As the mesh readers: a byte order mark is dropped, LF, CRLF and CR alone end lines.
-    let text = strip_bom(text);
     let mut vertices = Vec::new();
     let mut lines = Vec::new();
     for (number, line) in text_lines(text).enumerate().map(|(i, l)| (i + 1, l)) {

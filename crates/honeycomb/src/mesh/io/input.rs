@@ -38,9 +38,12 @@ pub fn read_file(path: &Path) -> Result<Vec<u8>> {
 }
 
 /// The lines of `text`, each ended by LF, CRLF or a lone CR (old Mac files), without their
-/// ending; like `str::lines`, no empty line after a final line ending.
+/// ending; like `str::lines`, no empty line after a final line ending. A byte order mark
+/// before the first line is dropped.
 pub fn text_lines(text: &str) -> TextLines<'_> {
-    TextLines { rest: text }
+    TextLines {
+        rest: strip_bom(text),
+    }
 }
 
 pub struct TextLines<'a> {
@@ -69,7 +72,7 @@ impl<'a> Iterator for TextLines<'a> {
 }
 
 /// Drops a UTF-8 byte order mark, which some Windows tools write before the first keyword.
-pub fn strip_bom(text: &str) -> &str {
+fn strip_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 

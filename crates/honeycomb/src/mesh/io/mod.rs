@@ -14,7 +14,7 @@ mod ply;
 pub use atomic::{
     replace_folder, write_atomically, write_output_dir, OutputDir, Outputs, Previous, Verdict,
 };
-pub use input::{read_file, strip_bom, strip_bom_bytes, text_lines, TextLines, MAX_INPUT_BYTES};
+pub use input::{read_file, strip_bom_bytes, text_lines, TextLines, MAX_INPUT_BYTES};
 
 pub use obj::{parse_obj, write_obj};
 pub use off::{parse_off, write_off};

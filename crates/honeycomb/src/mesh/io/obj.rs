@@ -1,9 +1,7 @@
 //! Wavefront OBJ: `v` and `f` records. Everything else (normals, texture coordinates, groups,
 //! materials, `l` polylines, which are read elsewhere) is ignored.
 
-use super::{
-    before, check_face_range, parse_error, parse_position, strip_bom, text_lines, LoadedMesh,
-};
+use super::{before, check_face_range, parse_error, parse_position, text_lines, LoadedMesh};
 use crate::error::Result;
 use crate::mesh::PolyMesh;
 use std::io::Write;
@@ -11,8 +9,7 @@ use std::path::Path;
 
 /// Parses OBJ text; `path` only names the file in messages.
 pub fn parse_obj(text: &str, path: &Path) -> Result<LoadedMesh> {
-    let text = strip_bom(text);
-    if text.trim().is_empty() {
+    if text_lines(text).all(|line| line.trim().is_empty()) {
         return Err(parse_error(path, 0, "empty file"));
     }
     let mut vertices = Vec::new();

@@ -2,7 +2,7 @@
 //! ...): one vertex per line, then one face per line as `k i1 .. ik [colour]`.
 
 use super::{
-    before, capacity, check_face_range, parse_error, parse_position, strip_bom, text_lines,
+    before, capacity, check_face_range, parse_error, parse_position, text_lines,
     write_counted_body, LoadedMesh,
 };
 use crate::error::Result;
@@ -12,7 +12,6 @@ use std::path::Path;
 
 /// Parses OFF text; `path` only names the file in messages.
 pub fn parse_off(text: &str, path: &Path) -> Result<LoadedMesh> {
-    let text = strip_bom(text);
     // Significant lines with their 1-based numbers: comments stripped, blank lines skipped.
     let mut lines = text_lines(text).enumerate().filter_map(|(i, raw)| {
         let content = before(raw, '#');
