@@ -3,7 +3,7 @@
 use crate::progress::{IterationBar, Output};
 use honeycomb::analysis::{extruded_along_normals, read_directions, shading_report};
 use honeycomb::error::{rounded, short_number};
-use honeycomb::geometry::read_axes;
+use honeycomb::geometry::{parse_direction, read_axes};
 use honeycomb::mesh::{
     check_base_near_surface, nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh,
     OutputDir, PolyMesh, Verdict,
@@ -101,7 +101,7 @@ pub struct SolveArgs {
     /// Shading (Fig. 18): the direction DX,DY,DZ the light travels in; the node axes are
     /// prescribed across it (the surface normal with its component along the light removed),
     /// and report.json compares the light share through the cells before and after.
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse_direction, allow_hyphen_values = true)]
     pub light: Option<Vec3>,
     /// With --light: more light directions (e.g. a day's sun path), one "x y z" per line; each
     /// gets its light share before and after in report.json.
@@ -114,7 +114,7 @@ pub struct SolveArgs {
     pub quads: Option<QuadPattern>,
     /// With --quads: the straight polylines follow the lattice direction closest to DX,DY,DZ
     /// [default: the direction whose quads start closest to planar].
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = parse_direction, allow_hyphen_values = true)]
     pub quad_direction: Option<Vec3>,
     /// Weight of quad planarity (the paper's w_cons^faces; with --quads) [default: 0.1].
     #[arg(long, allow_negative_numbers = true)]
@@ -382,11 +382,6 @@ impl SolveArgs {
         options.axes = Some(axes);
         Ok(())
     }
-}
-
-/// `DX,DY,DZ` (or space separated) as a unit direction.
-fn parse_vec3(s: &str) -> std::result::Result<Vec3, String> {
-    honeycomb::geometry::parse_direction(s)
 }
 
 /// The flags of the thickness, the minimum edge length and the depth, as the library's
