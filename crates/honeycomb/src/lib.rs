@@ -8,6 +8,7 @@ pub mod constraints;
 pub mod edit;
 pub mod error;
 pub mod export;
+pub mod fabrication;
 pub mod generate;
 pub mod geometry;
 pub mod init;

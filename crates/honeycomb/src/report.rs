@@ -163,6 +163,24 @@ impl Report {
         m.omega_max_deg <= Self::OMEGA_TOLERANCE_DEG && m.delta_max <= Self::DELTA_TOLERANCE
     }
 
+    /// "omega_max 3.100 deg (tolerance 0.1 deg), delta_max 2.0e-2 (tolerance 1e-3)", or delta
+    /// alone where T-junctions make the angles 180/120/60 degrees by construction.
+    pub fn tolerance_summary(m: &Measures, walls_only: bool) -> String {
+        let delta = format!(
+            "delta_max {:.1e} (tolerance {:.0e})",
+            m.delta_max,
+            Self::DELTA_TOLERANCE
+        );
+        if walls_only {
+            return delta;
+        }
+        format!(
+            "omega_max {:.3} deg (tolerance {} deg), {delta}",
+            m.omega_max_deg,
+            Self::OMEGA_TOLERANCE_DEG
+        )
+    }
+
     pub const FIGURE16_HEADER: &'static str =
         "   |V|    |E|  w_ang w_con w_nrm  #It  omega_max  omega_avg  delta_max  delta_avg   T (s)  axis";
 

@@ -11,6 +11,12 @@ use crate::optimize::MAX_LENGTH;
 use crate::structure::{Honeycomb, StructureJson};
 use std::path::Path;
 
+mod frame;
+mod model;
+
+pub use frame::{Frame, Units, Up};
+pub use model::{read_honeycomb, Model};
+
 pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
     let mut outputs = Outputs::new();
     stage_json(&mut outputs, path, value)?;
