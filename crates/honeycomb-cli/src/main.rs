@@ -6,6 +6,7 @@ mod bench_roofs;
 mod bench_variants;
 mod demo;
 mod edit;
+mod export;
 mod init;
 mod optimize;
 mod progress;
@@ -38,6 +39,8 @@ enum Command {
     Demo(demo::Args),
     /// Edit a structure directory by wall translations (resize a cell).
     Edit(edit::Args),
+    /// Files for fabrication and exchange: glTF, OBJ, flat wall panels (DXF, SVG), CSV tables.
+    Export(export::Args),
     /// Draw a structure directory's honeycomb as an SVG picture, colour-coded.
     Render(render::Args),
     /// Spherical image of a structure directory: cell areas, Proposition 1 check.
@@ -58,6 +61,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench::run(args),
         Command::Analyse(args) => analyse::run(args),
         Command::Edit(args) => edit::run(args),
+        Command::Export(args) => export::run(args),
         Command::Render(args) => render::run(args),
         Command::Serve(args) => serve::run(args),
     };

@@ -11,10 +11,19 @@ use crate::optimize::MAX_LENGTH;
 use crate::structure::{Honeycomb, StructureJson};
 use std::path::Path;
 
+mod csv;
+mod dxf;
+mod exchange;
 mod frame;
+mod glb;
 mod model;
+mod obj;
+mod sheets;
+mod svg;
 
+pub use exchange::{export, parse_sheet, ExportOptions, Exported, Format};
 pub use frame::{Frame, Units, Up};
+pub use glb::glb_bytes;
 pub use model::{read_honeycomb, Model};
 
 pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {

@@ -199,23 +199,32 @@ pub enum Previous {
 
 /// Files that mark a folder as an output directory of an earlier run, which a new run may
 /// replace; a folder that holds other files and none of these is someone else's.
-const OUTPUT_MARKERS: [&str; 2] = ["report.json", "structure.json"];
+const OUTPUT_MARKERS: [&str; 3] = ["export.json", "report.json", "structure.json"];
 
 /// Every file a run writes into its output directory. An earlier run's folder that holds
 /// anything else (a picture rendered into it, a note) is kept as `DIR.previous`, not removed.
-const RUN_FILES: [&str; 13] = [
+const RUN_FILES: [&str; 22] = [
     "analysis.json",
     "base.obj",
+    "bom.csv",
     "demo.json",
+    "export.json",
     "init.json",
     "initial.obj",
     "input_base.obj",
+    "nodes.csv",
     "offset.obj",
+    "panels.dxf",
+    "panels.svg",
     "quads.obj",
     "report.json",
     "spherical_image.obj",
+    "structure.glb",
     "structure.json",
+    "structure.mtl",
+    "structure.obj",
     "surface.obj",
+    "walls.csv",
     "walls.obj",
 ];
 
@@ -412,8 +421,8 @@ fn check_replaceable(dir: &Path) -> Result<Vec<String>> {
         return Ok(names);
     }
     Err(Error::Parameter(format!(
-        "-o {}: a folder with other files (such as {}) and no report.json or structure.json \
-         of an earlier run; the outputs replace the folder whole: give a new or empty one",
+        "-o {}: a folder with other files (such as {}) and no report.json, structure.json \
+         or export.json of an earlier run; the outputs replace the folder whole: give a new or empty one",
         dir.display(),
         names[0]
     )))
