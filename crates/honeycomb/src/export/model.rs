@@ -28,8 +28,7 @@ impl Model {
     /// Reads `DIR/structure.json` and S (`surface`, else `DIR/surface.obj` when present, else M
     /// itself), refusing a structure that is not a honeycomb: a fabricator must not cut one.
     pub fn read(dir: &Path, surface: Option<&Path>, units: Units) -> Result<Model> {
-        let honeycomb = read_honeycomb(dir)?.0;
-        let conn = Connectivity::build(&honeycomb.base)?;
+        let (honeycomb, conn) = read_structure(dir)?;
         let path: Option<PathBuf> = match surface {
             Some(p) => Some(p.to_path_buf()),
             None => Some(dir.join("surface.obj")).filter(|p| p.is_file()),
@@ -40,6 +39,7 @@ impl Model {
         };
         let surface = Surface::from_mesh(surface_mesh.as_ref().unwrap_or(&honeycomb.base))?;
         let measures = measure(&honeycomb, &surface);
+        refuse_unless_honeycomb(dir, &measures)?;
         Ok(Model {
             honeycomb,
             conn,
@@ -69,15 +69,20 @@ pub fn read_honeycomb(dir: &Path) -> Result<(Honeycomb, Connectivity, Measures)>
     let (h, conn) = read_structure(dir)?;
     // Omega and delta do not depend on S; M stands in for it.
     let measures = measure(&h, &Surface::from_mesh(&h.base)?);
-    if !Report::within_tolerances(&measures) {
-        return Err(Error::Parse {
-            path: dir.join("structure.json"),
-            line: 0,
-            message: format!(
-                "not a honeycomb: {}",
-                Report::tolerance_summary(&measures, false)
-            ),
-        });
-    }
+    refuse_unless_honeycomb(dir, &measures)?;
     Ok((h, conn, measures))
+}
+
+fn refuse_unless_honeycomb(dir: &Path, measures: &Measures) -> Result<()> {
+    if Report::within_tolerances(measures) {
+        return Ok(());
+    }
+    Err(Error::Parse {
+        path: dir.join("structure.json"),
+        line: 0,
+        message: format!(
+            "not a honeycomb: {}",
+            Report::tolerance_summary(measures, false)
+        ),
+    })
 }
