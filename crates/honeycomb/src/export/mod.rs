@@ -12,9 +12,11 @@ use crate::structure::{Honeycomb, StructureJson};
 use std::path::Path;
 
 mod frame;
+mod glb;
 mod model;
 
 pub use frame::{Frame, Units, Up};
+pub use glb::glb_bytes;
 pub use model::{read_honeycomb, Model};
 
 pub fn write_json(path: &Path, value: &impl serde::Serialize) -> Result<()> {
