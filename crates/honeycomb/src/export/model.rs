@@ -28,7 +28,7 @@ impl Model {
     /// Reads `DIR/structure.json` and S (`surface`, else `DIR/surface.obj` when present, else M
     /// itself), refusing a structure that is not a honeycomb: a fabricator must not cut one.
     pub fn read(dir: &Path, surface: Option<&Path>, units: Units) -> Result<Model> {
-        let (honeycomb, conn) = read_structure(dir)?;
+        let (honeycomb, _) = read_structure(dir)?;
         let path: Option<PathBuf> = match surface {
             Some(p) => Some(p.to_path_buf()),
             None => Some(dir.join("surface.obj")).filter(|p| p.is_file()),
@@ -37,16 +37,35 @@ impl Model {
             Some(p) => Some(read_mesh(p)?.mesh),
             None => None,
         };
+        let mut model = Model::new(honeycomb, surface_mesh, units)?;
+        refuse_unless_honeycomb(dir, &model.measures)?;
+        if let Some(p) = path {
+            model.surface_source = p.display().to_string();
+        }
+        Ok(model)
+    }
+
+    /// A model of a honeycomb already in memory, with S as given (else M itself); unlike
+    /// `read`, it does not check that the structure is a honeycomb.
+    pub fn new(
+        honeycomb: Honeycomb,
+        surface_mesh: Option<PolyMesh>,
+        units: Units,
+    ) -> Result<Model> {
+        let conn = Connectivity::build(&honeycomb.base)?;
         let surface = Surface::from_mesh(surface_mesh.as_ref().unwrap_or(&honeycomb.base))?;
         let measures = measure(&honeycomb, &surface);
-        refuse_unless_honeycomb(dir, &measures)?;
+        let surface_source = match surface_mesh {
+            Some(_) => "surface mesh".into(),
+            None => "base mesh M".into(),
+        };
         Ok(Model {
             honeycomb,
             conn,
             measures,
             surface,
             surface_mesh,
-            surface_source: path.map_or("base mesh M".into(), |p| p.display().to_string()),
+            surface_source,
             units,
         })
     }
