@@ -444,3 +444,35 @@ fn a_second_export_replaces_the_first_whole() {
         .success());
     assert_eq!(common::entries(&out), ["export.json", "panels.svg"]);
 }
+
+#[test]
+fn all_formats_by_default() {
+    let tmp = TempDir::new("export-all");
+    let src = saddle(&tmp);
+    let out = tmp.join("out");
+    let ok = export(&src, &out, &[]);
+    assert!(ok.status.success(), "{}", common::stderr(&ok));
+    assert!(stdout(&ok).contains("wrote structure.glb"), "{}", stdout(&ok));
+    assert_eq!(
+        common::entries(&out),
+        [
+            "bom.csv",
+            "export.json",
+            "nodes.csv",
+            "panels.dxf",
+            "panels.svg",
+            "structure.glb",
+            "structure.mtl",
+            "structure.obj",
+            "walls.csv"
+        ]
+    );
+    let glb = std::fs::read(out.join("structure.glb")).unwrap();
+    assert_eq!(&glb[..4], b"glTF");
+    let length = u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize;
+    assert_eq!(length, glb.len());
+    let text = String::from_utf8_lossy(&glb);
+    for name in ["\"walls\"", "\"W0\"", "\"C0\"", "\"node_axes\"", "\"surface\""] {
+        assert!(text.contains(name), "{name}");
+    }
+}
