@@ -2,9 +2,9 @@
 
 use honeycomb::analysis::spherical_image;
 use honeycomb::export::read_structure;
-use honeycomb::mesh::{read_mesh, write_atomically, Connectivity};
-use honeycomb::render::{check_width, spherical_scene, walls_scene, Coloring, Scene, View};
-use honeycomb::structure::measure;
+use honeycomb::mesh::{read_mesh, write_atomically};
+use honeycomb::render::{check_width, spherical_scene, walls_scene, Coloring, View, WallMeasure};
+use honeycomb::structure::measure as measure_structure;
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result};
 use std::path::PathBuf;
@@ -22,8 +22,9 @@ pub struct Args {
     /// normal, degrees; needs S too) or area (|spherical area| of its cells, sr).
     #[arg(long, default_value = "delta")]
     pub color: String,
-    /// Viewing direction: top, front, side or iso.
-    #[arg(long, default_value = "iso")]
+    /// Viewing direction: auto (along the shape's direction of least bending, from 30 degrees
+    /// above), top, front, side or iso.
+    #[arg(long, default_value = "auto")]
     pub view: View,
     /// The design surface S, for --color closeness and axis (default: DIR/surface.obj when present).
     #[arg(long)]
@@ -37,6 +38,9 @@ pub struct Args {
     /// Picture width in pixels.
     #[arg(long, default_value_t = 1200)]
     pub width: u32,
+    /// Print nothing on stdout.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -52,32 +56,30 @@ pub fn run(args: Args) -> Result<()> {
             args.output.display()
         )));
     }
-    let save = |scene: Scene| -> Result<()> {
-        let bytes = if ext == "png" {
-            scene.to_png()
-        } else {
-            scene.to_svg().into_bytes()
-        };
-        write_atomically(&args.output, |w| w.write_all(&bytes))
-    };
     check_width(args.width)?;
-    let (h, _) = read_structure(&args.dir)?;
-    if args.spherical {
+    let measure: WallMeasure = args.color.parse().map_err(Error::Parameter)?;
+    let (h, conn) = read_structure(&args.dir)?;
+    let name = args.dir.file_name().map_or_else(
+        || args.dir.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let (scene, what) = if args.spherical {
         crate::analyse::check_tolerance(args.tolerance)?;
         let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);
-        return save(spherical_scene(&h.base.faces, &h.axes, &image, args.width));
-    }
-    let m = measure(&h, &Surface::from_mesh(&h.base)?);
-    let (label, per_wall): (&str, Vec<f64>) = match args.color.as_str() {
-        "delta" => ("delta (wall planarity)", m.delta_per_wall.clone()),
-        "omega" => (
-            "omega (deg)",
-            h.edges
-                .iter()
-                .map(|&[a, b]| m.omega_per_node[a].max(m.omega_per_node[b]))
-                .collect(),
-        ),
-        "closeness" | "axis" => {
+        let what = format!(
+            "{} cells: {} of zero area, {} violating Proposition 1",
+            image.cells,
+            image.zero_area_cells,
+            image.proposition1_violations.len()
+        );
+        let title = format!("{name}: spherical image");
+        (
+            spherical_scene(&h.base.faces, &h.axes, &image, args.width, &title),
+            what,
+        )
+    } else {
+        // Closeness and axis are measured against S; the others need only M.
+        let surface = if measure.needs_surface() {
             let path = args
                 .surface
                 .clone()
@@ -91,56 +93,39 @@ pub fn run(args: Args) -> Result<()> {
                     path.display()
                 )));
             }
-            let surface = Surface::from_mesh(&read_mesh(&path)?.mesh)?;
-            let on_surface = measure(&h, &surface);
-            let (label, per_node) = if args.color == "axis" {
-                ("axis to normal (deg)", on_surface.axis_normal_per_node)
-            } else {
-                let unit = on_surface.mean_edge_length;
-                let d = surface.closest_points(&h.base.vertices);
-                (
-                    "closeness (edge lengths)",
-                    d.iter().map(|c| c.distance / unit).collect(),
-                )
-            };
-            (
-                label,
-                h.edges
-                    .iter()
-                    .map(|&[a, b]| per_node[a].max(per_node[b]))
-                    .collect(),
-            )
-        }
-        "area" => {
-            let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);
-            let conn = Connectivity::build(&h.base)?;
-            (
-                "area (spherical, sr)",
-                conn.edge_faces
-                    .iter()
-                    .map(|fs| {
-                        fs.iter()
-                            .flatten()
-                            .map(|&f| image.per_cell[f].area.abs())
-                            .fold(0.0, f64::max)
-                    })
-                    .collect(),
-            )
-        }
-        other => {
-            return Err(Error::Parameter(format!(
-                "--color {other}: expected omega, delta, closeness, axis or area"
-            )))
-        }
-    };
-    save(walls_scene(
-        &h,
-        &Coloring {
-            label,
+            Surface::from_mesh(&read_mesh(&path)?.mesh)?
+        } else {
+            Surface::from_mesh(&h.base)?
+        };
+        let m = measure_structure(&h, &surface);
+        let per_wall = measure.per_wall(&h, &m, &conn, args.tolerance);
+        let coloring = Coloring {
+            title: format!("{name}: {}", measure.name()),
+            measure: measure.name(),
+            meaning: measure.meaning(),
+            unit: measure.unit(),
             per_wall: &per_wall,
-            linear: args.color == "axis",
-        },
-        args.view,
-        args.width,
-    ))
+            tolerance: measure.tolerance(),
+        };
+        let camera = args.view.camera(&h.base.vertices);
+        (
+            walls_scene(&h, &coloring, camera, args.width),
+            coloring.verdict(),
+        )
+    };
+    let bytes = if ext == "png" {
+        scene.to_png()?
+    } else {
+        scene.to_svg().into_bytes()
+    };
+    write_atomically(&args.output, |w| w.write_all(&bytes))?;
+    if !args.quiet {
+        println!(
+            "wrote {} ({} x {} px): {what}",
+            args.output.display(),
+            scene.width,
+            scene.height
+        );
+    }
+    Ok(())
 }

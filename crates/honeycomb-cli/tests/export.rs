@@ -452,7 +452,11 @@ fn all_formats_by_default() {
     let out = tmp.join("out");
     let ok = export(&src, &out, &[]);
     assert!(ok.status.success(), "{}", common::stderr(&ok));
-    assert!(stdout(&ok).contains("wrote structure.glb"), "{}", stdout(&ok));
+    assert!(
+        stdout(&ok).contains("wrote structure.glb"),
+        "{}",
+        stdout(&ok)
+    );
     assert_eq!(
         common::entries(&out),
         [
@@ -472,7 +476,13 @@ fn all_formats_by_default() {
     let length = u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize;
     assert_eq!(length, glb.len());
     let text = String::from_utf8_lossy(&glb);
-    for name in ["\"walls\"", "\"W0\"", "\"C0\"", "\"node_axes\"", "\"surface\""] {
+    for name in [
+        "\"walls\"",
+        "\"W0\"",
+        "\"C0\"",
+        "\"node_axes\"",
+        "\"surface\"",
+    ] {
         assert!(text.contains(name), "{name}");
     }
 }

@@ -13,17 +13,29 @@ fn fills(svg: &str) -> Vec<String> {
         .collect()
 }
 
+/// The calm ramp's ends and the red of walls over the tolerance.
+const PALE: &str = "#e2e8ee";
+const RED: &str = "#d62728";
+
+/// Whether a fill lies on the calm ramp (between pale and the steady blue, channel by channel).
+fn calm(fill: &str) -> bool {
+    let channel = |k: usize| u8::from_str_radix(&fill[1 + 2 * k..3 + 2 * k], 16).unwrap();
+    let (r, g, b) = (channel(0), channel(1), channel(2));
+    (49..=226).contains(&r) && (104..=232).contains(&g) && (166..=238).contains(&b) && b >= r
+}
+
 #[test]
-fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
+fn a_rendered_honeycomb_has_its_walls_a_title_a_verdict_and_a_legend() {
     let tmp = TempDir::new("render");
     let dir = tmp.join("h");
     demo(&dir, &["--vertices", "300"]);
     let edges = read_json(&dir, "report.json")["edges"].as_u64().unwrap() as usize;
     for (color, view) in [
-        ("delta", "iso"),
+        ("delta", "auto"),
         ("omega", "top"),
         ("delta", "front"),
         ("closeness", "side"),
+        ("axis", "iso"),
     ] {
         let out = tmp.join(&format!("{color}-{view}.svg"));
         let r = run([
@@ -39,20 +51,48 @@ fn a_rendered_honeycomb_has_its_walls_a_colour_bar_and_varying_colours() {
             "800",
         ]);
         assert!(r.status.success(), "{}", common::stderr(&r));
+        assert!(
+            common::stdout(&r).starts_with(&format!("wrote {}", out.display())),
+            "{}",
+            common::stdout(&r)
+        );
         let svg = std::fs::read_to_string(&out).unwrap();
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
         assert!(svg.contains(r#"width="800""#), "{color} {view}");
         let f = fills(&svg);
-        assert_eq!(f.len(), edges, "one polygon per wall");
-        // Not blank: the walls are coloured, in several colours (the measure varies).
-        let distinct: HashSet<&String> = f.iter().collect();
-        assert!(
-            distinct.len() >= 5,
-            "{color} {view}: only {} colours",
-            distinct.len()
+        assert_eq!(
+            svg.matches("class=\"wall\"").count(),
+            edges,
+            "one polygon per wall"
         );
         assert!(svg.matches("class=\"colour-bar\"").count() >= 16);
-        assert!(svg.contains(&format!(">{color}<")), "{color}");
+        // The title, the measure's heading and the triad and scale bar.
+        assert!(svg.contains(&format!(">h: {color}<")), "{color}");
+        for text in [">X<", ">Y<", ">Z<", " model units<"] {
+            assert!(svg.contains(text), "{color}: {text}");
+        }
+        if color == "axis" {
+            // A design measure: the full colour map over round ticks, mean and largest told.
+            assert!(svg.contains(">axis (deg)<") && svg.contains("walls: mean "));
+            let distinct: HashSet<&String> = f.iter().collect();
+            assert!(distinct.len() >= 5, "only {} colours", distinct.len());
+            assert!(svg.contains(">0<") && svg.contains(">10<"), "ticks");
+        } else {
+            // An exact honeycomb is judged against the tolerance and looks calm: every wall
+            // on the pale end of one ramp, none red.
+            assert!(
+                svg.contains(&format!(">all {edges} walls within ")),
+                "{color}: no verdict"
+            );
+            assert!(f.iter().all(|c| calm(c)), "{color}: {f:?}");
+            assert!(svg.contains("over tolerance"));
+            if color != "closeness" {
+                assert!(
+                    f.iter().filter(|c| c.as_str() == PALE).count() > edges / 2,
+                    "{color}"
+                );
+            }
+        }
     }
     let bad = run([
         "render",
@@ -129,8 +169,43 @@ fn the_spherical_image_tells_zero_area_cells_from_the_others() {
             cells,
             "{class}"
         );
-        assert!(svg.contains("Proposition 1 violated"));
+        assert!(
+            svg.contains("violations (0 &lt; |area| &lt; pi/3)"),
+            "legend"
+        );
+        assert!(svg.contains("equal-area projection"));
     }
+    // A honeycomb that fails its tolerance says so, and paints its bad walls red.
+    let out = rough.join("omega.svg");
+    let r = run([
+        "render",
+        rough.to_str().unwrap(),
+        "--color",
+        "omega",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", common::stderr(&r));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(svg.contains(" walls over 0.1 deg (worst "), "verdict");
+    assert!(fills(&svg).iter().any(|c| c == RED), "no red wall");
+    // Parallel axes: the image is one point, and the picture says so.
+    let parallel = tmp.join("parallel");
+    demo(&parallel, &["--vertices", "300", "--walls", "0,0,1"]);
+    let out = parallel.join("sphere.svg");
+    let r = run([
+        "render",
+        parallel.to_str().unwrap(),
+        "--spherical",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", common::stderr(&r));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        svg.contains("node axes parallel: the image is one point"),
+        "{svg}"
+    );
     // Walls coloured by the spherical area of their cells vary where the areas do.
     let out = rough.join("area.svg");
     let r = run([
@@ -147,56 +222,28 @@ fn the_spherical_image_tells_zero_area_cells_from_the_others() {
     assert!(distinct.len() >= 5, "only {} colours", distinct.len());
 }
 
-/// Width, height and RGB pixels of a PNG made of stored (uncompressed) deflate blocks, as
-/// `render` writes them.
-fn decode_stored_png(bytes: &[u8]) -> (u32, u32, Vec<[u8; 3]>) {
-    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
-    let (mut pos, mut idat, mut size) = (8, Vec::new(), (0, 0));
-    while pos < bytes.len() {
-        let len = u32::from_be_bytes(bytes[pos..pos + 4].try_into().unwrap()) as usize;
-        let kind = &bytes[pos + 4..pos + 8];
-        let data = &bytes[pos + 8..pos + 8 + len];
-        if kind == b"IHDR" {
-            size = (
-                u32::from_be_bytes(data[0..4].try_into().unwrap()),
-                u32::from_be_bytes(data[4..8].try_into().unwrap()),
-            );
-            assert_eq!(&data[8..10], &[8, 2], "8-bit RGB");
-        } else if kind == b"IDAT" {
-            idat.extend_from_slice(data);
-        }
-        pos += 12 + len;
-    }
-    let (mut raw, mut at) = (Vec::new(), 2);
-    loop {
-        let last = idat[at] & 1 == 1;
-        let len = u16::from_le_bytes([idat[at + 1], idat[at + 2]]) as usize;
-        raw.extend_from_slice(&idat[at + 5..at + 5 + len]);
-        at += 5 + len;
-        if last {
-            break;
-        }
-    }
-    let (w, h) = size;
-    assert_eq!(raw.len(), (h * (1 + 3 * w)) as usize);
-    let pixels = raw
-        .chunks((1 + 3 * w) as usize)
-        .flat_map(|row| {
-            row[1..]
-                .chunks(3)
-                .map(|p| [p[0], p[1], p[2]])
-                .collect::<Vec<_>>()
-        })
+/// Width, height and RGB pixels of a PNG.
+fn decode_png(bytes: &[u8]) -> (u32, u32, Vec<[u8; 3]>) {
+    let mut reader = png::Decoder::new(std::io::Cursor::new(bytes))
+        .read_info()
+        .unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let channels = info.color_type.samples();
+    assert_eq!(info.bit_depth, png::BitDepth::Eight);
+    let pixels = buf[..info.buffer_size()]
+        .chunks(channels)
+        .map(|p| [p[0], p[1], p[2]])
         .collect();
-    (w, h, pixels)
+    (info.width, info.height, pixels)
 }
 
 #[test]
-fn png_pictures_have_the_asked_size_and_colour() {
+fn png_pictures_have_the_asked_size_colour_and_text() {
     let tmp = TempDir::new("render-png");
     let dir = tmp.join("h");
     demo(&dir, &["--vertices", "300"]);
-    for extra in [&["--color", "delta"][..], &["--spherical"][..]] {
+    for extra in [&["--color", "axis"][..], &["--spherical"][..]] {
         let out = tmp.join("p.png");
         let mut args = vec![
             "render",
@@ -205,23 +252,44 @@ fn png_pictures_have_the_asked_size_and_colour() {
             out.to_str().unwrap(),
             "--width",
             "640",
+            "-q",
         ];
         args.extend_from_slice(extra);
         let r = run(&args);
         assert!(r.status.success(), "{}", common::stderr(&r));
-        let (w, h, pixels) = decode_stored_png(&std::fs::read(&out).unwrap());
+        assert!(common::stdout(&r).is_empty(), "--quiet");
+        let bytes = std::fs::read(&out).unwrap();
+        let (w, h, pixels) = decode_png(&bytes);
         assert_eq!(w, 640);
-        assert!(h >= 260, "{h}");
+        assert!(h >= 300, "{h}");
+        // Compressed: far smaller than its raw pixels.
+        assert!(bytes.len() < pixels.len(), "{} bytes", bytes.len());
         let white = pixels.iter().filter(|p| **p == [255, 255, 255]).count();
         let colours: HashSet<[u8; 3]> = pixels.iter().copied().collect();
         println!(
-            "{extra:?}: {w}x{h}, {} colours, {:.0}% white",
+            "{extra:?}: {w}x{h}, {} bytes, {} colours, {:.0}% white",
+            bytes.len(),
             colours.len(),
             100.0 * white as f64 / pixels.len() as f64
         );
+        // The title is drawn: dark ink where it stands (top left), none in the empty corner
+        // to its right above the drawing.
+        let ink = |x0: u32, x1: u32, y0: u32, y1: u32| {
+            (y0..y1)
+                .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+                .filter(|&(x, y)| {
+                    let p = pixels[(y * w + x) as usize];
+                    p.iter().all(|&c| c < 110)
+                })
+                .count()
+        };
+        assert!(ink(20, 200, 10, 32) > 80, "no title ink");
+        assert!(ink(20, 300, 36, 52) > 40, "no second line");
         if extra[0] == "--spherical" {
-            // A curve-like image: the zero-area cells' outlines trace the curve.
-            let outline = pixels.iter().filter(|p| **p == [122, 166, 194]).count();
+            let outline = pixels
+                .iter()
+                .filter(|p| p[2] > p[0] + 40 && p[2] > 150)
+                .count();
             assert!(outline > 50, "only {outline} outline pixels");
         } else {
             assert!(white < pixels.len() * 97 / 100, "nearly blank");

@@ -2,17 +2,20 @@
 //! the spherical image (Figs. 4-5).
 
 mod colormap;
-mod png;
+mod legend;
+mod measure;
 mod scene;
 mod spherical;
-mod svg;
 mod view;
+mod walls;
 
 pub use colormap::{color, Scale};
-pub use scene::{Scene, Shape};
+pub use legend::Ramp;
+pub use measure::WallMeasure;
+pub use scene::{Scene, Shape, TextStyle};
 pub use spherical::spherical_scene;
-pub use svg::{walls_scene, Coloring};
-pub use view::View;
+pub use view::{Camera, View};
+pub use walls::{walls_scene, Coloring};
 
 /// The narrowest picture that holds the colour bar and the widest one drawn: a PNG is held in
 /// memory about four times over at 3 bytes a pixel (0.8 GB at 8000 pixels square).

@@ -1,7 +1,6 @@
-//! A picture as a list of shapes, written as SVG text or rasterized into a PNG. Texts appear
-//! in SVG only (no font is embedded for PNG).
+//! A picture as a list of shapes, written as SVG text or rasterized into a PNG; both carry
+//! the same text.
 
-use super::png;
 use std::fmt::Write;
 
 pub type Rgb = (u8, u8, u8);
@@ -28,18 +27,64 @@ pub enum Shape {
         r: f64,
         stroke: Rgb,
     },
+    Line {
+        from: (f64, f64),
+        to: (f64, f64),
+        stroke: Rgb,
+        width: f64,
+    },
     Text {
         x: f64,
         y: f64,
         size: f64,
         text: String,
+        style: TextStyle,
     },
+}
+
+/// How a text is set.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextStyle {
+    pub fill: Rgb,
+    pub bold: bool,
+    /// SVG's text-anchor: "start", "middle" or "end".
+    pub anchor: &'static str,
+}
+
+impl Default for TextStyle {
+    fn default() -> TextStyle {
+        TextStyle {
+            fill: (34, 34, 34),
+            bold: false,
+            anchor: "start",
+        }
+    }
+}
+
+impl Shape {
+    /// Plain text starting at (x, y).
+    pub fn text(x: f64, y: f64, size: f64, text: impl Into<String>) -> Shape {
+        Shape::Text {
+            x,
+            y,
+            size,
+            text: text.into(),
+            style: TextStyle::default(),
+        }
+    }
 }
 
 pub struct Scene {
     pub width: u32,
     pub height: u32,
     pub shapes: Vec<Shape>,
+}
+
+/// Text as SVG character data.
+pub fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 fn hex((r, g, b): Rgb) -> String {
@@ -115,10 +160,40 @@ impl Scene {
                         hex(*stroke)
                     );
                 }
-                Shape::Text { x, y, size, text } => {
+                Shape::Line {
+                    from,
+                    to,
+                    stroke,
+                    width,
+                } => {
                     let _ = writeln!(
                         s,
-                        r#"<text x="{x:.1}" y="{y:.1}" font-family="sans-serif" font-size="{size}">{text}</text>"#
+                        r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{}" stroke-width="{width}" stroke-linecap="round"/>"#,
+                        from.0,
+                        from.1,
+                        to.0,
+                        to.1,
+                        hex(*stroke)
+                    );
+                }
+                Shape::Text {
+                    x,
+                    y,
+                    size,
+                    text,
+                    style,
+                } => {
+                    let weight = if style.bold {
+                        r#" font-weight="bold""#
+                    } else {
+                        ""
+                    };
+                    let _ = writeln!(
+                        s,
+                        r#"<text x="{x:.1}" y="{y:.1}" font-family="sans-serif" font-size="{size}" fill="{}" text-anchor="{}"{weight}>{}</text>"#,
+                        hex(style.fill),
+                        style.anchor,
+                        escape(text)
                     );
                 }
             }
@@ -127,47 +202,27 @@ impl Scene {
         s
     }
 
-    /// The scene rasterized (fills, outlines, no text) and encoded as PNG.
-    pub fn to_png(&self) -> Vec<u8> {
-        let mut canvas = png::Canvas::new(self.width, self.height);
-        for shape in &self.shapes {
-            match shape {
-                Shape::Polygon {
-                    points,
-                    fill,
-                    stroke,
-                    opacity,
-                    ..
-                } => {
-                    if let Some(c) = fill {
-                        canvas.fill_polygon(points, *c, *opacity);
-                    }
-                    if let Some((c, _)) = stroke {
-                        for k in 0..points.len() {
-                            canvas.line(points[k], points[(k + 1) % points.len()], *c);
-                        }
-                    }
-                }
-                Shape::Rect {
-                    x, y, w, h, fill, ..
-                } => {
-                    let pts = [(*x, *y), (x + w, *y), (x + w, y + h), (*x, y + h)];
-                    canvas.fill_polygon(&pts, *fill, 1.0);
-                }
-                Shape::Circle { cx, cy, r, stroke } => {
-                    let n = 360;
-                    for k in 0..n {
-                        let (a, b) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
-                        let at = |t: f64| {
-                            let t = t * std::f64::consts::TAU;
-                            (cx + r * t.cos(), cy + r * t.sin())
-                        };
-                        canvas.line(at(a), at(b), *stroke);
-                    }
-                }
-                Shape::Text { .. } => {}
-            }
+    /// The scene rasterized from its SVG (antialiased, with its text in an embedded DejaVu
+    /// Sans, so every machine draws the same letters) and encoded as a compressed PNG.
+    pub fn to_png(&self) -> crate::Result<Vec<u8>> {
+        use resvg::{tiny_skia, usvg};
+        let mut options = usvg::Options::default();
+        {
+            let fonts = options.fontdb_mut();
+            fonts.load_font_data(dejavu::sans::regular().to_vec());
+            fonts.load_font_data(dejavu::sans::bold().to_vec());
+            fonts.set_sans_serif_family("DejaVu Sans");
         }
-        canvas.encode()
+        let failed = |what: String| crate::Error::Parameter(format!("drawing the PNG: {what}"));
+        let tree =
+            usvg::Tree::from_str(&self.to_svg(), &options).map_err(|e| failed(e.to_string()))?;
+        let mut pixmap = tiny_skia::Pixmap::new(self.width, self.height)
+            .ok_or_else(|| failed(format!("no {} x {} picture", self.width, self.height)))?;
+        resvg::render(
+            &tree,
+            tiny_skia::Transform::identity(),
+            &mut pixmap.as_mut(),
+        );
+        pixmap.encode_png().map_err(|e| failed(e.to_string()))
     }
 }
