@@ -98,11 +98,10 @@ pub fn draw(
             Shape::Outline(panel.cut.iter().map(|&p| place(p)).collect()),
         ));
         let o = panel.outline;
-        if cut.is_some() {
-            for (p, q) in [(o[0], o[3]), (o[1], o[2])] {
-                {
-                    items.push(item(Layer::Bevel, Shape::Line(place(p), place(q))));
-                }
+        // The ridge of a bevelled end lies on the node axis, where the end was set back.
+        for (p, q, end) in [(o[0], o[3], panel.cut[0]), (o[1], o[2], panel.cut[1])] {
+            if end != p {
+                items.push(item(Layer::Bevel, Shape::Line(place(p), place(q))));
             }
         }
         let rotation_deg = if placed.turned { 90.0 } else { 0.0 };
