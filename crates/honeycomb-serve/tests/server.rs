@@ -78,6 +78,8 @@ fn serves_its_assets_and_nothing_else() {
         assert_eq!(status, 200, "{path}");
         assert!(body.len() > 100, "{path}");
     }
+    // Browsers ask for an icon: no icon, but no 404 either.
+    assert_eq!(get(&server, "/favicon.ico").0, 204);
     for path in [
         "/../Cargo.toml",
         "/vendor/../../Cargo.toml",
