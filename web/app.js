@@ -373,7 +373,7 @@ $('remake-go').onclick = () => {
 // A download is made by the server from the current state; a refusal (not a honeycomb) is
 // shown as an error instead of being saved as the file.
 async function download(file) {
-  const r = await fetch(`/download/${file}`);
+  const r = await fetch(`/download/${file}?units=${$('units').value}`);
   if (!r.ok) {
     showError(`download ${file}: ${await r.text()}`);
     return { ok: false, status: r.status };

@@ -6,7 +6,7 @@ use crate::protocol::{
     error_message, mesh_message, state_message, warning_message, ClientMessage, Remakes, UpdateInfo,
 };
 use crate::source::{save_dir, Source};
-use honeycomb::export::{export, write_structure, ExportOptions, Model};
+use honeycomb::export::{export, write_structure, ExportOptions, Model, Units};
 use honeycomb::interactive::{EditSession, SessionOptions, Workspace};
 use honeycomb::mesh::{replace_folder, write_mesh};
 use honeycomb::report::Report;
@@ -23,8 +23,9 @@ pub enum Command {
     Message(ClientMessage, Instant, Page),
     /// A new page (its number): send it the mesh and the current state.
     Hello(u64, mpsc::UnboundedSender<Arc<str>>),
-    /// A download of `file` (one of `protocol::DOWNLOADS`) made from the current state.
-    Download(String, tokio::sync::oneshot::Sender<Download>),
+    /// A download of `file` (one of `protocol::DOWNLOADS`) made from the current state, one
+    /// model unit standing for `Units`.
+    Download(String, Units, tokio::sync::oneshot::Sender<Download>),
 }
 
 /// A download's bytes, or why there are none.
@@ -210,8 +211,8 @@ impl Editor {
                         tell(&reply, self.mesh(current));
                         tell(&reply, self.state(session, &p));
                     }
-                    Command::Download(file, reply) => {
-                        let _ = reply.send(download(session, &current.ws, &file));
+                    Command::Download(file, units, reply) => {
+                        let _ = reply.send(download(session, &current.ws, &file, units));
                     }
                     Command::Message(message, at, page) => {
                         if let Some(next) = self.handle(session, current, message, at, page, &mut p)
@@ -432,7 +433,7 @@ fn remake(
 
 /// `file` of `honeycomb export`, made from the current state in a temporary folder; refused
 /// when the state is not a honeycomb (mid-solve, or an edit that broke it).
-fn download(session: &EditSession, ws: &Workspace, file: &str) -> Download {
+fn download(session: &EditSession, ws: &Workspace, file: &str, units: Units) -> Download {
     let format = match crate::protocol::download(file) {
         Ok((_, format)) => format,
         Err(e) => return Download::Failed(e),
@@ -453,13 +454,14 @@ fn download(session: &EditSession, ws: &Workspace, file: &str) -> Download {
     let made = Model::new(
         view.honeycomb,
         Some(ws.model_surface.mesh_for_export()),
-        ExportOptions::default().units,
+        units,
     )
     .and_then(|model| {
         let folder = TempFolder::new()?;
         let out = folder.0.join("export");
         let options = ExportOptions {
             formats: vec![format],
+            units,
             ..ExportOptions::default()
         };
         export(&model, &options, &out, &[])?;

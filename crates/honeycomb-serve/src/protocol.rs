@@ -1,6 +1,6 @@
 //! The WebSocket messages between the page and the editor, as JSON text frames.
 
-use honeycomb::export::Format;
+use honeycomb::export::{Format, Units};
 use honeycomb::interactive::{Edit, View, Workspace};
 use honeycomb::Vec3;
 use serde::Deserialize;
@@ -188,6 +188,26 @@ pub fn download(file: &str) -> Result<(&'static str, Format), String> {
                 names.join(", ")
             )
         })
+}
+
+/// The units of a download from its query (`units=mm`; by default one model unit is a metre):
+/// the length one model unit stands for, as `honeycomb export --units` takes it.
+pub fn download_units(query: Option<&str>) -> Result<Units, String> {
+    let mut units = Units::default();
+    for pair in query.unwrap_or("").split('&').filter(|p| !p.is_empty()) {
+        match pair.split_once('=') {
+            Some(("units", value)) => {
+                units = Units::parse(value)
+                    .map_err(|_| format!("units {value:?}: expected {}", Units::NAMES))?
+            }
+            _ => {
+                return Err(format!(
+                    "query {pair:?}: a download takes only units=mm|cm|m|in|ft"
+                ))
+            }
+        }
+    }
+    Ok(units)
 }
 
 fn flat(points: &[Vec3]) -> Vec<f32> {
@@ -386,6 +406,12 @@ mod download_tests {
                 assert_eq!(download(file).unwrap().1, format, "{file}");
             }
         }
+        assert_eq!(download_units(None).unwrap(), Units::M);
+        assert_eq!(download_units(Some("units=mm")).unwrap(), Units::Mm);
+        let e = download_units(Some("units=furlong")).unwrap_err();
+        assert!(e.contains("expected mm, cm, m, in or ft"), "{e}");
+        let e = download_units(Some("scale=2")).unwrap_err();
+        assert!(e.contains("only units="), "{e}");
         for bad in ["export.json", "../structure.glb", "", "structure.GLB"] {
             let e = download(bad).unwrap_err();
             assert!(e.contains("the downloads are structure.glb"), "{e}");

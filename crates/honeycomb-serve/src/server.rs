@@ -101,14 +101,18 @@ async fn asset(uri: Uri) -> Response {
 
 /// `GET /download/FILE`: one of `honeycomb export`'s files, made from the current state by the
 /// editor between solver steps.
-async fn download(Path(file): Path<String>, State(state): State<AppState>) -> Response {
+async fn download(Path(file): Path<String>, uri: Uri, State(state): State<AppState>) -> Response {
     let text = |status, message: String| (status, message).into_response();
     let mime = match crate::protocol::download(&file) {
         Ok((mime, _)) => mime,
         Err(e) => return text(StatusCode::NOT_FOUND, e),
     };
+    let units = match crate::protocol::download_units(uri.query()) {
+        Ok(units) => units,
+        Err(e) => return text(StatusCode::BAD_REQUEST, e),
+    };
     let (reply, made) = tokio::sync::oneshot::channel();
-    match state.try_send(Command::Download(file.clone(), reply)) {
+    match state.try_send(Command::Download(file.clone(), units, reply)) {
         Sent::Queued => {}
         Sent::Busy => {
             return text(

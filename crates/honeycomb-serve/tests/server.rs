@@ -503,6 +503,14 @@ fn downloads_are_the_export_files_of_the_current_state() {
         );
         assert!(body.len() > 100 && found(&body, inside), "{file}");
     }
+    // Units as `honeycomb export --units` takes them: the glTF (metres) of a model in mm is a
+    // thousandth of the one in m; nonsense is refused.
+    let glb_m = get_with_headers(&server, "/download/structure.glb").2;
+    let glb_mm = get_with_headers(&server, "/download/structure.glb?units=mm").2;
+    assert!(!glb_mm.is_empty() && glb_mm != glb_m);
+    let (status, _, body) = get_with_headers(&server, "/download/structure.glb?units=furlong");
+    assert_eq!(status, 400);
+    assert!(String::from_utf8_lossy(&body).contains("expected mm, cm, m, in or ft"));
     let (status, _, body) = get_with_headers(&server, "/download/export.json");
     assert_eq!(status, 404);
     assert!(String::from_utf8_lossy(&body).contains("the downloads are structure.glb"));
