@@ -46,6 +46,7 @@ app.send = send;
 
 function showError(message) {
   app.errors.push(message);
+  if (drag) drag.sliding = false;
   const box = $('error');
   box.textContent = message;
   box.hidden = false;
@@ -160,6 +161,7 @@ function applyState(s) {
   objects.wallMesh.geometry.computeBoundingSphere();
   if (!objects.framed) frame();
   if (drag) markPicked(drag);
+  slid(s);
 
   const f = (x, d = 3) => (x < 1e-3 && x > 0 ? x.toExponential(2) : x.toFixed(d));
   const ms = s.measures;
@@ -298,7 +300,7 @@ canvas.addEventListener('pointerdown', (event) => {
     vertex, tips, mode: m, stroke, anchor,
     plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, anchor),
     base: point(s.base, vertex), axis: point(s.offset, vertex).sub(point(s.base, vertex)).normalize(),
-    slid: 0, pending: null,
+    slid: 0, wanted: 0, sliding: false, pending: null,
   };
   markPicked(drag);
   app.drags += 1;
@@ -328,11 +330,28 @@ canvas.addEventListener('pointermove', (event) => {
     raycaster.ray.distanceSqToSegment(
       drag.base.clone().addScaledVector(drag.axis, -1e3), drag.base.clone().addScaledVector(drag.axis, 1e3), null, along);
     const t = along.sub(drag.base).dot(drag.axis);
-    const step = t - drag.slid;
-    drag.slid = t;
-    if (Math.abs(step) > 0) send({ type: 'slide', vertex: drag.vertex, distance: step, stroke: drag.stroke });
+    drag.wanted = t;
+    slide();
   }
 });
+
+// A slide is sent as a step from where the vertex stands, one at a time: the server may stop
+// it short (off S, or at M'), and steps counted from the pointer alone would then carry the
+// vertex back before the pointer came back.
+function slide() {
+  if (drag.sliding || drag.wanted === drag.slid) return;
+  drag.sliding = true;
+  drag.sent = drag.wanted;
+  send({ type: 'slide', vertex: drag.vertex, distance: drag.wanted - drag.slid, stroke: drag.stroke });
+}
+function slid(s) {
+  if (!drag || drag.mode !== 'slide' || !drag.sliding || s.stroke !== drag.stroke) return;
+  drag.slid = point(s.base, drag.vertex).sub(drag.base).dot(drag.axis);
+  drag.sliding = false;
+  // Nothing more unless the pointer moved on: a stopped slide is not asked again.
+  if (drag.wanted !== drag.sent) slide();
+  else drag.wanted = drag.slid;
+}
 
 // One drag message per frame at most: the server replaces a stale one anyway.
 function queue(message) {
