@@ -18,8 +18,8 @@ scene.add(sun);
 
 // The page's state, also read by the end-to-end test.
 const app = (window.honeycomb = {
-  mesh: null, lastState: null, states: 0, errors: [], connected: false, drags: 0,
-  screenOf, axisTipNearCentre,
+  mesh: null, meshes: 0, lastState: null, states: 0, errors: [], warnings: [], connected: false, drags: 0,
+  page: null, screenOf, axisTipNearCentre, download,
 });
 
 let objects = null; // the three.js objects of the current mesh
@@ -32,9 +32,11 @@ socket.onopen = () => { app.connected = true; };
 socket.onclose = () => { app.connected = false; showError('connection to the server lost'); };
 socket.onmessage = (event) => {
   const m = JSON.parse(event.data);
-  if (m.type === 'mesh') buildMesh(m);
+  if (m.type === 'hello') app.page = m.page;
+  else if (m.type === 'mesh') buildMesh(m);
   else if (m.type === 'state') applyState(m);
   else if (m.type === 'error') showError(m.message);
+  else if (m.type === 'warning') showWarning(m.message);
   else if (m.type === 'saved') setStatus(`saved to ${m.dir}`);
 };
 function send(message) {
@@ -44,11 +46,19 @@ app.send = send;
 
 function showError(message) {
   app.errors.push(message);
+  if (drag) drag.sliding = false;
   const box = $('error');
   box.textContent = message;
   box.hidden = false;
   clearTimeout(showError.timer);
   showError.timer = setTimeout(() => { box.hidden = true; }, 8000);
+}
+// A warning stays until the next gesture: it is about the last one.
+function showWarning(message) {
+  app.warnings.push(message);
+  const box = $('warning');
+  box.textContent = message;
+  box.hidden = false;
 }
 function setStatus(text) { $('status').textContent = text; }
 
@@ -56,7 +66,17 @@ function setStatus(text) { $('status').textContent = text; }
 function buildMesh(m) {
   if (objects) for (const o of Object.values(objects)) if (o.isObject3D) { scene.remove(o); o.geometry.dispose(); }
   app.mesh = m;
+  app.meshes += 1;
   $('source').textContent = m.source;
+  $('thickness_now').textContent = m.thickness.toPrecision(3);
+  $('remake').hidden = m.remake.cells === null && !m.remake.thickness;
+  $('cells-row').hidden = m.remake.cells === null;
+  $('thickness-row').hidden = !m.remake.thickness;
+  if (m.remake.cells !== null) $('cells').value = m.remake.cells;
+  $('thickness').value = Number(m.thickness.toPrecision(3));
+  $('sphere-caption').textContent = `Spherical image (seen along the mean axis): ${nvText(m.vertices)} `
+    + `dots, one per node axis as a unit vector; ${nvText(m.faces.length)} polygons, one per cell, `
+    + `joining its nodes' axes. Small polygons: nearly parallel axes.`;
   const nv = m.vertices;
   const surface = new THREE.BufferGeometry();
   surface.setAttribute('position', new THREE.Float32BufferAttribute(m.surface.vertices, 3));
@@ -141,6 +161,7 @@ function applyState(s) {
   objects.wallMesh.geometry.computeBoundingSphere();
   if (!objects.framed) frame();
   if (drag) markPicked(drag);
+  slid(s);
 
   const f = (x, d = 3) => (x < 1e-3 && x > 0 ? x.toExponential(2) : x.toFixed(d));
   const ms = s.measures;
@@ -153,11 +174,13 @@ function applyState(s) {
   $('closeness_avg').textContent = f(ms.closeness_avg);
   $('axis_mean').textContent = ms.axis_normal_mean_deg.toFixed(2);
   $('axis_max').textContent = ms.axis_normal_max_deg.toFixed(2);
+  $('edge_length').textContent = ms.mean_edge_length.toPrecision(3);
   $('step_ms').textContent = s.step_ms.toFixed(1);
   $('edit_ms').textContent = s.edit_ms.toFixed(1);
   setStatus(s.done ? 'ready' : 'solving...');
-  $('undo').disabled = !s.can_undo;
-  $('redo').disabled = !s.can_redo;
+  // Each page undoes only its own gestures: a new page has none, whatever the others did.
+  $('undo').disabled = s.undo_page === null || s.undo_page !== app.page;
+  $('redo').disabled = s.redo_page === null || s.redo_page !== app.page;
   sphereImage.update(B, O);
   redraw();
 }
@@ -173,6 +196,30 @@ function heat(value, scale, out) {
   const t = Math.min(1, Math.max(0, Math.log10(Math.max(value, 1e-30) / scale) / 4 + 1));
   out.setHSL((1 - t) * 0.66, 0.75, 0.5);
 }
+
+function nvText(n) { return n.toLocaleString('en'); }
+
+// The legend of the wall colours: the same scales as heat() and lean().
+const scales = {
+  omega: { title: 'walls: omega, the largest error from 120 deg of a node angle at the wall (deg, log scale)',
+    ticks: ['5e-6', '5e-5', '5e-4', '0.005', '0.05+'] },
+  delta: { title: 'walls: delta, a wall\'s diagonals apart, in edge lengths (planarity; log scale)',
+    ticks: ['1e-7', '1e-6', '1e-5', '1e-4', '0.001+'] },
+  axis: { title: 'walls: the larger angle of its node axes to S\'s normal (deg)',
+    ticks: ['0', '11', '22', '34', '45+'] },
+};
+function legend() {
+  const by = document.querySelector('input[name=colour]:checked').value;
+  const stops = [0, 0.25, 0.5, 0.75, 1].map((t) => `hsl(${Math.round((1 - t) * 0.66 * 360)}, 75%, 50%)`);
+  $('legend-title').textContent = scales[by].title;
+  $('legend-bar').style.background = `linear-gradient(to right, ${stops.join(', ')})`;
+  $('legend-ticks').replaceChildren(...scales[by].ticks.map((t) => {
+    const span = document.createElement('span');
+    span.textContent = t;
+    return span;
+  }));
+}
+legend();
 
 function frame() {
   const sphere = objects.wallMesh.geometry.boundingSphere;
@@ -241,6 +288,7 @@ canvas.addEventListener('pointerdown', (event) => {
   const tips = m === 'axis';
   const vertex = pick(event, tips);
   if (vertex === null) return;
+  $('warning').hidden = true;
   controls.enabled = false;
   canvas.setPointerCapture(event.pointerId);
   stroke += 1;
@@ -252,7 +300,7 @@ canvas.addEventListener('pointerdown', (event) => {
     vertex, tips, mode: m, stroke, anchor,
     plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, anchor),
     base: point(s.base, vertex), axis: point(s.offset, vertex).sub(point(s.base, vertex)).normalize(),
-    slid: 0, pending: null,
+    slid: 0, wanted: 0, sliding: false, pending: null,
   };
   markPicked(drag);
   app.drags += 1;
@@ -282,11 +330,28 @@ canvas.addEventListener('pointermove', (event) => {
     raycaster.ray.distanceSqToSegment(
       drag.base.clone().addScaledVector(drag.axis, -1e3), drag.base.clone().addScaledVector(drag.axis, 1e3), null, along);
     const t = along.sub(drag.base).dot(drag.axis);
-    const step = t - drag.slid;
-    drag.slid = t;
-    if (Math.abs(step) > 0) send({ type: 'slide', vertex: drag.vertex, distance: step, stroke: drag.stroke });
+    drag.wanted = t;
+    slide();
   }
 });
+
+// A slide is sent as a step from where the vertex stands, one at a time: the server may stop
+// it short (off S, or at M'), and steps counted from the pointer alone would then carry the
+// vertex back before the pointer came back.
+function slide() {
+  if (drag.sliding || drag.wanted === drag.slid) return;
+  drag.sliding = true;
+  drag.sent = drag.wanted;
+  send({ type: 'slide', vertex: drag.vertex, distance: drag.wanted - drag.slid, stroke: drag.stroke });
+}
+function slid(s) {
+  if (!drag || drag.mode !== 'slide' || !drag.sliding || s.stroke !== drag.stroke) return;
+  drag.slid = point(s.base, drag.vertex).sub(drag.base).dot(drag.axis);
+  drag.sliding = false;
+  // Nothing more unless the pointer moved on: a stopped slide is not asked again.
+  if (drag.wanted !== drag.sent) slide();
+  else drag.wanted = drag.slid;
+}
 
 // One drag message per frame at most: the server replaces a stale one anyway.
 function queue(message) {
@@ -312,7 +377,35 @@ $('redo').onclick = () => send({ type: 'redo' });
 $('cancel').onclick = () => send({ type: 'cancel' });
 $('save').onclick = () => send({ type: 'save', name: $('save-name').value });
 $('load').onclick = () => send({ type: 'load', name: $('save-name').value });
-for (const r of document.querySelectorAll('input[name=colour]')) r.onchange = () => app.lastState && applyState(app.lastState);
+for (const r of document.querySelectorAll('input[name=colour]')) {
+  r.onchange = () => { legend(); if (app.lastState) applyState(app.lastState); };
+}
+$('remake-go').onclick = () => {
+  const m = app.mesh, message = { type: 'remake' };
+  if (m.remake.cells !== null && Number($('cells').value) !== m.remake.cells) message.cells = Number($('cells').value);
+  if (m.remake.thickness && Number($('thickness').value) !== Number(m.thickness.toPrecision(3))) {
+    message.thickness = Number($('thickness').value);
+  }
+  setStatus('making again...');
+  send(message);
+};
+// A download is made by the server from the current state; a refusal (not a honeycomb) is
+// shown as an error instead of being saved as the file.
+async function download(file) {
+  const r = await fetch(`/download/${file}?units=${$('units').value}`);
+  if (!r.ok) {
+    showError(`download ${file}: ${await r.text()}`);
+    return { ok: false, status: r.status };
+  }
+  const blob = await r.blob();
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(blob);
+  a.download = file;
+  a.click();
+  setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+  return { ok: true, status: r.status, bytes: blob.size, type: r.headers.get('content-type') };
+}
+for (const b of document.querySelectorAll('#downloads button')) b.onclick = () => download(b.dataset.file);
 window.addEventListener('keydown', (e) => {
   if (!(e.ctrlKey || e.metaKey) || e.target.tagName === 'INPUT' && e.target.type !== 'radio') return;
   if (e.key === 'z') send({ type: 'undo' });

@@ -82,15 +82,16 @@ fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
         "serve printed {url:?}"
     );
 
-    // The screenshot is a test artifact: target/e2e/serve-drag-axis.png.
-    let artifacts = repo().join("target/e2e");
-    std::fs::create_dir_all(&artifacts).unwrap();
-    let screenshot = artifacts.join("serve-drag-axis.png");
-    let _ = std::fs::remove_file(&screenshot);
+    // The screenshots stay after the test, to look at: editor.png, drag-axis.png and
+    // slide-warning.png in the system's temporary folder.
+    let shots = std::env::temp_dir().join("honeycomb-e2e-serve");
+    let _ = std::fs::remove_dir_all(&shots);
+    std::fs::create_dir_all(&shots).unwrap();
+    println!("screenshots in {}", shots.display());
     let out = Command::new("node")
         .arg("e2e/drag-axis.mjs")
         .arg(&url)
-        .arg(&screenshot)
+        .arg(&shots)
         .current_dir(repo().join("web"))
         .output()
         .unwrap();
@@ -107,7 +108,27 @@ fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
         .contains("malformed message"));
     assert_eq!(findings["undo_restored"], true);
     assert!(findings["vertex_drag_omega"].as_f64().unwrap() < 0.05);
-    assert!(std::fs::metadata(&screenshot).unwrap().len() > 10_000);
+    // The page says what it shows, and a second page cannot undo the first one's drag.
+    let legend = findings["shown"]["legend"].as_str().unwrap();
+    assert!(
+        legend.contains("omega") && legend.contains("M: base mesh"),
+        "{legend}"
+    );
+    assert_eq!(findings["shown"]["help"].as_array().unwrap().len(), 3);
+    assert_eq!(findings["second_page_undo_disabled"], true);
+    let warning = findings["slide_warning"].as_str().unwrap();
+    assert!(
+        warning.contains("stopped") && warning.contains("off S"),
+        "{warning}"
+    );
+    assert_eq!(findings["download"]["ok"], true);
+    assert_eq!(findings["failed_requests"], serde_json::json!([]));
+    for shot in ["editor.png", "drag-axis.png", "slide-warning.png"] {
+        assert!(
+            std::fs::metadata(shots.join(shot)).unwrap().len() > 10_000,
+            "{shot}"
+        );
+    }
 }
 
 #[test]

@@ -2,11 +2,14 @@
 //! steps and broadcasts every iterate. Commands that arrive while a solve runs are all read
 //! before the next step, so a newer drag replaces a stale one at once.
 
-use crate::protocol::{error_message, mesh_message, state_message, ClientMessage, UpdateInfo};
+use crate::protocol::{
+    error_message, mesh_message, state_message, warning_message, ClientMessage, Remakes, UpdateInfo,
+};
 use crate::source::{save_dir, Source};
-use honeycomb::export::write_structure;
+use honeycomb::export::{export, write_structure, ExportOptions, Model, Units};
 use honeycomb::interactive::{EditSession, SessionOptions, Workspace};
 use honeycomb::mesh::{replace_folder, write_mesh};
+use honeycomb::report::Report;
 use honeycomb::Result;
 use serde_json::{json, Value};
 use std::path::PathBuf;
@@ -18,8 +21,19 @@ use tokio::sync::{broadcast, mpsc};
 pub enum Command {
     /// A parsed message from a page, with the moment it was read.
     Message(ClientMessage, Instant, Page),
-    /// A new page: send it the mesh and the current state.
-    Hello(mpsc::UnboundedSender<Arc<str>>),
+    /// A new page (its number): send it the mesh and the current state.
+    Hello(u64, mpsc::UnboundedSender<Arc<str>>),
+    /// A download of `file` (one of `protocol::DOWNLOADS`) made from the current state, one
+    /// model unit standing for `Units`.
+    Download(String, Units, tokio::sync::oneshot::Sender<Download>),
+}
+
+/// A download's bytes, or why there are none.
+pub enum Download {
+    Bytes(Vec<u8>),
+    /// The current state is not a honeycomb (a fabricator must not cut it).
+    NotHoneycomb(String),
+    Failed(String),
 }
 
 /// The page a message came from: its number (pages number their own gestures) and where its
@@ -46,12 +60,36 @@ pub struct Editor {
     pub out: broadcast::Sender<Arc<str>>,
     pub save_root: PathBuf,
     pub options: SessionOptions,
-    pub thickness: Option<f64>,
+}
+
+/// What the editor edits: the workspace, how the page names it, and the input it came from
+/// (which a remake makes again).
+struct Current {
+    ws: Workspace,
+    label: String,
+    source: Source,
+    thickness: Option<f64>,
+}
+
+impl Current {
+    fn remakes(&self) -> Remakes {
+        match &self.source {
+            Source::Surface { cells, .. } => Remakes {
+                cells: Some(*cells),
+                thickness: true,
+            },
+            Source::Demo { .. } => Remakes {
+                cells: None,
+                thickness: true,
+            },
+            Source::Structure(_) => Remakes::default(),
+        }
+    }
 }
 
 /// How an editing run ended.
 enum Next {
-    Load(Box<Workspace>, String),
+    Load(Box<Current>),
     Stop,
 }
 
@@ -78,31 +116,39 @@ impl Progress {
 impl Editor {
     /// Runs until every sender of commands is gone. `ready` hears whether the first session
     /// could be set up.
-    pub fn run(self, first: Workspace, label: String, ready: std::sync::mpsc::Sender<Result<()>>) {
+    pub fn run(
+        self,
+        first: Workspace,
+        source: Source,
+        thickness: Option<f64>,
+        ready: std::sync::mpsc::Sender<Result<()>>,
+    ) {
         let mut ready = Some(ready);
-        let (mut ws, mut label) = (first, label);
+        let mut current = Current {
+            ws: first,
+            label: source.label(),
+            source,
+            thickness,
+        };
         // The workspace before a load, to go back to when the loaded one cannot be solved.
-        let mut previous: Option<(Workspace, String)> = None;
+        let mut previous: Option<Current> = None;
         loop {
-            let outcome = match EditSession::new(&ws, self.options.clone()) {
+            let outcome = match EditSession::new(&current.ws, self.options.clone()) {
                 Ok(mut session) => {
                     if let Some(r) = ready.take() {
                         let _ = r.send(Ok(()));
                     }
-                    self.broadcast(mesh_message(&ws, &label));
+                    self.broadcast(self.mesh(&current));
                     self.broadcast(self.state(&session, &Progress::new()));
-                    match self.edit(&mut session, &ws, &label) {
-                        Next::Load(next, next_label) => Ok((next, next_label)),
+                    match self.edit(&mut session, &current) {
+                        Next::Load(next) => Ok(next),
                         Next::Stop => return,
                     }
                 }
                 Err(e) => Err(e),
             };
             match outcome {
-                Ok((next, next_label)) => {
-                    let old = std::mem::replace(&mut ws, *next);
-                    previous = Some((old, std::mem::replace(&mut label, next_label)));
-                }
+                Ok(next) => previous = Some(std::mem::replace(&mut current, *next)),
                 Err(e) => {
                     if let Some(r) = ready.take() {
                         let _ = r.send(Err(e));
@@ -110,12 +156,16 @@ impl Editor {
                     }
                     self.broadcast(error_message(&format!("load failed: {e}")));
                     match previous.take() {
-                        Some(back) => (ws, label) = back,
+                        Some(back) => current = back,
                         None => return,
                     }
                 }
             }
         }
+    }
+
+    fn mesh(&self, current: &Current) -> Value {
+        mesh_message(&current.ws, &current.label, current.remakes())
     }
 
     fn broadcast(&self, message: Value) {
@@ -131,13 +181,13 @@ impl Editor {
             done: !session.solving(),
             step_ms: p.step_ms,
             edit_ms: p.edit_start.elapsed().as_secs_f64() * 1e3,
-            can_undo: session.can_undo(),
-            can_redo: session.can_redo(),
+            undo_page: session.undo_author(),
+            redo_page: session.redo_author(),
         };
         state_message(&session.view(), &info)
     }
 
-    fn edit(&self, session: &mut EditSession, ws: &Workspace, label: &str) -> Next {
+    fn edit(&self, session: &mut EditSession, current: &Current) -> Next {
         let mut p = Progress::new();
         loop {
             let command = if session.solving() {
@@ -154,12 +204,19 @@ impl Editor {
             };
             if let Some(command) = command {
                 match command {
-                    Command::Hello(reply) => {
-                        tell(&reply, mesh_message(ws, label));
+                    Command::Hello(number, reply) => {
+                        // The page's number first: its undo button follows the states'
+                        // `undo_page`.
+                        tell(&reply, json!({ "type": "hello", "page": number }));
+                        tell(&reply, self.mesh(current));
                         tell(&reply, self.state(session, &p));
                     }
+                    Command::Download(file, units, reply) => {
+                        let _ = reply.send(download(session, &current.ws, &file, units));
+                    }
                     Command::Message(message, at, page) => {
-                        if let Some(next) = self.handle(session, ws, message, at, page, &mut p) {
+                        if let Some(next) = self.handle(session, current, message, at, page, &mut p)
+                        {
                             return next;
                         }
                     }
@@ -187,7 +244,7 @@ impl Editor {
     fn handle(
         &self,
         session: &mut EditSession,
-        ws: &Workspace,
+        current: &Current,
         message: ClientMessage,
         at: Instant,
         page: Page,
@@ -200,8 +257,12 @@ impl Editor {
             p.step_ms = 0.0;
         };
         if let Some((edit, stroke)) = message.edit() {
-            match session.apply(edit, stroke.map(|s| gesture(page.number, s))) {
-                Ok(()) => {
+            let key = stroke.map(|s| gesture(page.number, s));
+            match session.apply_by(edit, key, page.number) {
+                Ok(applied) => {
+                    if let Some(w) = applied.warning {
+                        page.tell(warning_message(&w));
+                    }
                     instant(p, stroke);
                     if !session.solving() {
                         // A slide: nothing to solve, show it now.
@@ -215,35 +276,59 @@ impl Editor {
         }
         match message {
             ClientMessage::Undo {} | ClientMessage::Redo {} | ClientMessage::Cancel {} => {
-                let changed = match message {
-                    ClientMessage::Undo {} => session.undo(),
-                    ClientMessage::Redo {} => session.redo(),
+                // A page takes back (or brings back) only its own gestures, newest first: a new
+                // page has nothing to undo, whatever the others did.
+                let refusal = match message {
+                    ClientMessage::Undo {} => own(session.undo_author(), page.number, "undo")
+                        .map(|()| session.undo())
+                        .err(),
+                    ClientMessage::Redo {} => own(session.redo_author(), page.number, "redo")
+                        .map(|()| session.redo())
+                        .err(),
                     _ => {
                         session.cancel();
-                        true
+                        None
                     }
                 };
-                if !changed {
-                    page.tell(error_message("nothing to undo or redo"));
+                if let Some(why) = refusal {
+                    page.tell(error_message(&why));
                 }
                 instant(p, None);
                 p.seq += 1;
                 self.broadcast(self.state(session, p));
             }
-            ClientMessage::Save { name } => match self.save(session, ws, &name) {
+            ClientMessage::Save { name } => match self.save(session, &current.ws, &name) {
                 Ok(dir) => self.broadcast(json!({
                     "type": "saved", "name": name, "dir": dir.display().to_string()
                 })),
                 Err(e) => page.tell(error_message(&format!("save failed: {e}"))),
             },
             ClientMessage::Load { name } => {
-                let loaded = save_dir(&self.save_root, &name)
-                    .and_then(|dir| Source::Structure(dir).workspace(self.thickness));
+                let loaded = save_dir(&self.save_root, &name).and_then(|dir| {
+                    let source = Source::Structure(dir);
+                    Ok((source.workspace(None)?, source))
+                });
                 match loaded {
-                    Ok(next) => return Some(Next::Load(Box::new(next), name)),
+                    Ok((ws, source)) => {
+                        return Some(Next::Load(Box::new(Current {
+                            ws,
+                            label: name,
+                            source,
+                            thickness: None,
+                        })))
+                    }
                     Err(e) => page.tell(error_message(&format!("load failed: {e}"))),
                 }
             }
+            ClientMessage::Remake { cells, thickness } => match remake(current, cells, thickness) {
+                Ok((next, notes)) => {
+                    if !notes.is_empty() {
+                        page.tell(warning_message(&notes.join("; ")));
+                    }
+                    return Some(Next::Load(Box::new(next)));
+                }
+                Err(e) => page.tell(error_message(&format!("remake failed: {e}"))),
+            },
             // The edits, handled above.
             ClientMessage::DragVertex { .. }
             | ClientMessage::Slide { .. }
@@ -284,4 +369,130 @@ impl Editor {
 /// gestures stay far below 2^40 (one a millisecond for 30 years).
 fn gesture(page: u64, stroke: u64) -> u64 {
     (page << 40) ^ stroke
+}
+
+/// Whether `page` may undo (redo) the gesture of `author`: only its own.
+fn own(author: Option<u64>, page: u64, what: &str) -> std::result::Result<(), String> {
+    match author {
+        Some(a) if a == page => Ok(()),
+        Some(_) => Err(format!(
+            "nothing of this page's to {what}: the newest gesture is another page's (a page \
+             takes back only its own gestures, newest first)"
+        )),
+        None => Err(format!("nothing to {what}")),
+    }
+}
+
+/// The input made again with `cells` and `thickness` (each as it is now when left out), and
+/// the pipeline's notes. The options are checked as the CLI checks them before anything is
+/// solved.
+fn remake(
+    current: &Current,
+    cells: Option<usize>,
+    thickness: Option<f64>,
+) -> Result<(Current, Vec<String>)> {
+    use honeycomb::Error;
+    if cells.is_none() && thickness.is_none() {
+        return Err(Error::Parameter("give cells or thickness (or both)".into()));
+    }
+    if let Some(t) = thickness {
+        honeycomb::error::check_positive_length("thickness", t)?;
+    }
+    let source = match (&current.source, cells) {
+        (Source::Surface { path, walls, .. }, Some(cells)) => Source::Surface {
+            path: path.clone(),
+            cells,
+            walls: *walls,
+        },
+        (Source::Structure(_), _) => {
+            return Err(Error::Parameter(
+                "a structure directory (or a save) is edited as it was made: thickness and \
+                 cells are for a design surface (and thickness for the demo)"
+                    .into(),
+            ))
+        }
+        (Source::Demo { .. }, Some(_)) => {
+            return Err(Error::Parameter(
+                "cells: the demo is a built-in mesh; a cell count is for a design surface \
+                 (serve SURFACE.obj)"
+                    .into(),
+            ))
+        }
+        (source, None) => source.clone(),
+    };
+    let thickness = thickness.or(current.thickness);
+    let (ws, notes) = source.workspace_with_notes(thickness)?;
+    let next = Current {
+        ws,
+        label: source.label(),
+        source,
+        thickness,
+    };
+    Ok((next, notes))
+}
+
+/// `file` of `honeycomb export`, made from the current state in a temporary folder; refused
+/// when the state is not a honeycomb (mid-solve, or an edit that broke it).
+fn download(session: &EditSession, ws: &Workspace, file: &str, units: Units) -> Download {
+    let format = match crate::protocol::download(file) {
+        Ok((_, format)) => format,
+        Err(e) => return Download::Failed(e),
+    };
+    let view = session.view();
+    if session.solving() || !Report::within_tolerances(&view.measures) {
+        return Download::NotHoneycomb(format!(
+            "the current state is not a honeycomb ({}{}): nothing to download; undo the last \
+             edit or wait for the solve",
+            Report::tolerance_summary(&view.measures, false),
+            if session.solving() {
+                ", still solving"
+            } else {
+                ""
+            }
+        ));
+    }
+    let made = Model::new(
+        view.honeycomb,
+        Some(ws.model_surface.mesh_for_export()),
+        units,
+    )
+    .and_then(|model| {
+        let folder = TempFolder::new()?;
+        let out = folder.0.join("export");
+        let options = ExportOptions {
+            formats: vec![format],
+            units,
+            ..ExportOptions::default()
+        };
+        export(&model, &options, &out, &[])?;
+        let path = out.join(file);
+        std::fs::read(&path).map_err(|source| honeycomb::Error::Io { path, source })
+    });
+    match made {
+        Ok(bytes) => Download::Bytes(bytes),
+        Err(e) => Download::Failed(format!("{file}: {e}")),
+    }
+}
+
+/// A folder of its own under the system's temporary folder, removed when dropped.
+struct TempFolder(PathBuf);
+
+impl TempFolder {
+    fn new() -> Result<TempFolder> {
+        static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let dir =
+            std::env::temp_dir().join(format!("honeycomb-download-{}-{n}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        match std::fs::create_dir_all(&dir) {
+            Ok(()) => Ok(TempFolder(dir)),
+            Err(source) => Err(honeycomb::Error::Io { path: dir, source }),
+        }
+    }
+}
+
+impl Drop for TempFolder {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
 }

@@ -104,12 +104,11 @@ pub fn start(source: &Source, options: ServeOptions) -> Result<Server> {
         out: out.clone(),
         save_root: options.save_root.clone(),
         options: options.session.clone(),
-        thickness: options.thickness,
     };
-    let label = source.label();
+    let (first, thickness) = (source.clone(), options.thickness);
     std::thread::Builder::new()
         .name("editor".into())
-        .spawn(move || editor.run(ws, label, ready_tx))
+        .spawn(move || editor.run(ws, first, thickness, ready_tx))
         .map_err(|e| Error::Parameter(format!("cannot start the editor thread: {e}")))?;
     ready
         .recv()

@@ -1,5 +1,6 @@
 //! The WebSocket messages between the page and the editor, as JSON text frames.
 
+use honeycomb::export::{Format, Units};
 use honeycomb::interactive::{Edit, View, Workspace};
 use honeycomb::Vec3;
 use serde::Deserialize;
@@ -50,6 +51,13 @@ pub enum ClientMessage {
     Load {
         name: String,
     },
+    /// Make the honeycomb again from the input: a design surface with about `cells` cells,
+    /// M' at `thickness` (model units). Either may be left out (as it is now); `cells` needs a
+    /// design surface, `thickness` a surface or the demo (a structure keeps its own).
+    Remake {
+        cells: Option<usize>,
+        thickness: Option<f64>,
+    },
 }
 
 impl ClientMessage {
@@ -88,6 +96,7 @@ impl ClientMessage {
             ClientMessage::Cancel {} => "cancel".into(),
             ClientMessage::Save { name } => format!("save {name:?}"),
             ClientMessage::Load { name } => format!("load {name:?}"),
+            ClientMessage::Remake { .. } => "remake".into(),
         }
     }
 
@@ -153,6 +162,54 @@ pub fn check_name(name: &str) -> Result<&str, String> {
     }
 }
 
+/// The files a page may download (`GET /download/FILE`), their content type and the export
+/// format that writes them: `honeycomb export`'s files, made from the current state.
+pub const DOWNLOADS: [(&str, &str, Format); 8] = [
+    ("structure.glb", "model/gltf-binary", Format::Glb),
+    ("structure.obj", "model/obj", Format::Obj),
+    ("structure.mtl", "model/mtl", Format::Obj),
+    ("panels.dxf", "image/vnd.dxf", Format::Dxf),
+    ("panels.svg", "image/svg+xml", Format::Svg),
+    ("walls.csv", "text/csv; charset=utf-8", Format::Csv),
+    ("nodes.csv", "text/csv; charset=utf-8", Format::Csv),
+    ("bom.csv", "text/csv; charset=utf-8", Format::Csv),
+];
+
+/// The content type and format of a download, or why there is none.
+pub fn download(file: &str) -> Result<(&'static str, Format), String> {
+    DOWNLOADS
+        .iter()
+        .find(|(name, _, _)| *name == file)
+        .map(|&(_, mime, format)| (mime, format))
+        .ok_or_else(|| {
+            let names: Vec<&str> = DOWNLOADS.iter().map(|d| d.0).collect();
+            format!(
+                "no download {file:?}: the downloads are {}",
+                names.join(", ")
+            )
+        })
+}
+
+/// The units of a download from its query (`units=mm`; by default one model unit is a metre):
+/// the length one model unit stands for, as `honeycomb export --units` takes it.
+pub fn download_units(query: Option<&str>) -> Result<Units, String> {
+    let mut units = Units::default();
+    for pair in query.unwrap_or("").split('&').filter(|p| !p.is_empty()) {
+        match pair.split_once('=') {
+            Some(("units", value)) => {
+                units = Units::parse(value)
+                    .map_err(|_| format!("units {value:?}: expected {}", Units::NAMES))?
+            }
+            _ => {
+                return Err(format!(
+                    "query {pair:?}: a download takes only units=mm|cm|m|in|ft"
+                ))
+            }
+        }
+    }
+    Ok(units)
+}
+
 fn flat(points: &[Vec3]) -> Vec<f32> {
     points
         .iter()
@@ -160,15 +217,26 @@ fn flat(points: &[Vec3]) -> Vec<f32> {
         .collect()
 }
 
+/// What the page's remake controls may change: the cell count of a design surface (its
+/// value now), the thickness of a surface or the demo.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Remakes {
+    pub cells: Option<usize>,
+    pub thickness: bool,
+}
+
 /// The topology and the design surface, sent once per connection and after a load.
 /// The topology comes from the workspace: it is the same for every state, so no solve or
 /// measure is needed to send it.
-pub fn mesh_message(ws: &Workspace, source: &str) -> Value {
+pub fn mesh_message(ws: &Workspace, source: &str, remakes: Remakes) -> Value {
     let surface = &ws.model_surface;
     let triangles: Vec<usize> = surface.triangles().iter().flatten().copied().collect();
+    let thickness = ws.depths.iter().sum::<f64>() / ws.depths.len().max(1) as f64;
     json!({
         "type": "mesh",
         "source": source,
+        "thickness": thickness,
+        "remake": { "cells": remakes.cells, "thickness": remakes.thickness },
         "vertices": ws.base.vertices.len(),
         "faces": ws.base.faces,
         "edges": ws.conn.edges,
@@ -187,8 +255,10 @@ pub struct UpdateInfo {
     pub step_ms: f64,
     /// Milliseconds since the edit's message was read.
     pub edit_ms: f64,
-    pub can_undo: bool,
-    pub can_redo: bool,
+    /// The page whose gesture an undo would take back (pages undo only their own), if any.
+    pub undo_page: Option<u64>,
+    /// The page whose gesture a redo would bring back, if any.
+    pub redo_page: Option<u64>,
 }
 
 /// The geometry and measures after a step (or an instant edit).
@@ -202,8 +272,8 @@ pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
         "done": info.done,
         "step_ms": info.step_ms,
         "edit_ms": info.edit_ms,
-        "can_undo": info.can_undo,
-        "can_redo": info.can_redo,
+        "undo_page": info.undo_page,
+        "redo_page": info.redo_page,
         "base": flat(&h.base.vertices),
         "offset": flat(&h.offset.vertices),
         "omega": m.omega_per_node.iter().map(|&x| x as f32).collect::<Vec<_>>(),
@@ -259,6 +329,11 @@ pub fn error_message(message: &str) -> Value {
     json!({ "type": "error", "message": message })
 }
 
+/// Something the page shows until the next edit: the edit went through, but not all the way.
+pub fn warning_message(message: &str) -> Value {
+    json!({ "type": "warning", "message": message })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -308,6 +383,7 @@ mod tests {
             json!({"type": "cancel"}),
             json!({"type": "save", "name": "a"}),
             json!({"type": "load", "name": "a"}),
+            json!({"type": "remake", "cells": 300, "thickness": 0.1}),
         ];
         for m in plain {
             assert!(ClientMessage::parse(&m.to_string()).is_ok(), "{m}");
@@ -315,6 +391,30 @@ mod tests {
             extra["steps"] = json!(3);
             let e = ClientMessage::parse(&extra.to_string()).unwrap_err();
             assert!(e.contains("unknown field `steps`"), "{extra}: {e}");
+        }
+    }
+}
+
+#[cfg(test)]
+mod download_tests {
+    use super::*;
+
+    #[test]
+    fn every_export_file_is_a_download_and_nothing_else() {
+        for format in Format::ALL {
+            for file in format.files() {
+                assert_eq!(download(file).unwrap().1, format, "{file}");
+            }
+        }
+        assert_eq!(download_units(None).unwrap(), Units::M);
+        assert_eq!(download_units(Some("units=mm")).unwrap(), Units::Mm);
+        let e = download_units(Some("units=furlong")).unwrap_err();
+        assert!(e.contains("expected mm, cm, m, in or ft"), "{e}");
+        let e = download_units(Some("scale=2")).unwrap_err();
+        assert!(e.contains("only units="), "{e}");
+        for bad in ["export.json", "../structure.glb", "", "structure.GLB"] {
+            let e = download(bad).unwrap_err();
+            assert!(e.contains("the downloads are structure.glb"), "{e}");
         }
     }
 }

@@ -4,10 +4,10 @@
 //! lets any site open one to 127.0.0.1, and that site could then edit, save and overwrite.
 
 use crate::assets::{lookup, Asset, MISSING_HINT};
-use crate::editor::{Command, Page};
+use crate::editor::{Command, Download, Page};
 use crate::protocol::{error_message, ClientMessage};
 use axum::extract::ws::{Message, WebSocket, WebSocketUpgrade};
-use axum::extract::State;
+use axum::extract::{Path, State};
 use axum::http::{header, HeaderMap, StatusCode, Uri};
 use axum::response::{IntoResponse, Response};
 use axum::routing::get;
@@ -57,9 +57,9 @@ impl AppState {
 
     /// Asks for the mesh and the current state on `reply`, waiting while the queue is full (a
     /// page must get them to show anything). False: the editor is gone.
-    async fn hello(&self, reply: &mpsc::UnboundedSender<Arc<str>>) -> bool {
+    async fn hello(&self, page: u64, reply: &mpsc::UnboundedSender<Arc<str>>) -> bool {
         loop {
-            match self.try_send(Command::Hello(reply.clone())) {
+            match self.try_send(Command::Hello(page, reply.clone())) {
                 Sent::Queued => return true,
                 Sent::Busy => tokio::time::sleep(Duration::from_millis(5)).await,
                 Sent::Gone => return false,
@@ -74,11 +74,17 @@ static PAGES: AtomicU64 = AtomicU64::new(0);
 pub fn router(state: AppState) -> Router {
     Router::new()
         .route("/ws", get(upgrade))
+        .route("/download/{file}", get(download))
         .fallback(asset)
         .with_state(state)
 }
 
 async fn asset(uri: Uri) -> Response {
+    // The page names an icon of its own, but a browser asks for this one wherever it has none
+    // (a download's tab): no icon, and no 404 in its console.
+    if uri.path() == "/favicon.ico" {
+        return StatusCode::NO_CONTENT.into_response();
+    }
     match lookup(uri.path()) {
         Asset::Found { mime, bytes } => (
             [
@@ -90,6 +96,48 @@ async fn asset(uri: Uri) -> Response {
             .into_response(),
         Asset::Missing => (StatusCode::SERVICE_UNAVAILABLE, MISSING_HINT).into_response(),
         Asset::NotFound => (StatusCode::NOT_FOUND, "not found").into_response(),
+    }
+}
+
+/// `GET /download/FILE`: one of `honeycomb export`'s files, made from the current state by the
+/// editor between solver steps.
+async fn download(Path(file): Path<String>, uri: Uri, State(state): State<AppState>) -> Response {
+    let text = |status, message: String| (status, message).into_response();
+    let mime = match crate::protocol::download(&file) {
+        Ok((mime, _)) => mime,
+        Err(e) => return text(StatusCode::NOT_FOUND, e),
+    };
+    let units = match crate::protocol::download_units(uri.query()) {
+        Ok(units) => units,
+        Err(e) => return text(StatusCode::BAD_REQUEST, e),
+    };
+    let (reply, made) = tokio::sync::oneshot::channel();
+    match state.try_send(Command::Download(file.clone(), units, reply)) {
+        Sent::Queued => {}
+        Sent::Busy => {
+            return text(
+                StatusCode::SERVICE_UNAVAILABLE,
+                format!("the editor is busy: {file} not made; try again"),
+            )
+        }
+        Sent::Gone => return text(StatusCode::SERVICE_UNAVAILABLE, "the editor stopped".into()),
+    }
+    match made.await {
+        Ok(Download::Bytes(bytes)) => (
+            [
+                (header::CONTENT_TYPE, mime.to_string()),
+                (
+                    header::CONTENT_DISPOSITION,
+                    format!("attachment; filename=\"{file}\""),
+                ),
+                (header::CACHE_CONTROL, "no-store".to_string()),
+            ],
+            bytes,
+        )
+            .into_response(),
+        Ok(Download::NotHoneycomb(why)) => text(StatusCode::CONFLICT, why),
+        Ok(Download::Failed(why)) => text(StatusCode::INTERNAL_SERVER_ERROR, why),
+        Err(_) => text(StatusCode::SERVICE_UNAVAILABLE, "the editor stopped".into()),
     }
 }
 
@@ -137,7 +185,7 @@ async fn page(mut socket: WebSocket, state: AppState) {
     // Subscribe before saying hello, so no update falls between the two.
     let mut updates = state.out.subscribe();
     let (reply, mut replies) = mpsc::unbounded_channel();
-    if !state.hello(&reply).await {
+    if !state.hello(page, &reply).await {
         return;
     }
     loop {
@@ -179,7 +227,7 @@ async fn page(mut socket: WebSocket, state: AppState) {
                 // Fell behind: the skipped states are stale anyway, but a skipped mesh (another
                 // page loaded a save) would leave this page's states on the wrong mesh.
                 Err(broadcast::error::RecvError::Lagged(_)) => {
-                    if !state.hello(&reply).await {
+                    if !state.hello(page, &reply).await {
                         return;
                     }
                     continue;

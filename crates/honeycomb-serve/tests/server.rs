@@ -48,10 +48,18 @@ fn get(server: &Server, path: &str) -> (u16, Vec<u8>) {
 }
 
 fn connect(server: &Server) -> (Client, Value, Value) {
+    let (c, _, mesh, state) = connect_page(server);
+    (c, mesh, state)
+}
+
+/// A page and its number (a state's `undo_page` names the page whose gesture undo takes back).
+fn connect_page(server: &Server) -> (Client, Value, Value, Value) {
     let mut c = Client::connect(&format!("ws://{}/ws", server.addr)).unwrap();
+    // Updates of other pages' edits may come first.
+    let hello = c.until("hello", |_| true).unwrap();
     let mesh = c.until("mesh", |_| true).unwrap();
     let state = c.until("state", |_| true).unwrap();
-    (c, mesh, state)
+    (c, hello["page"].clone(), mesh, state)
 }
 
 #[test]
@@ -70,6 +78,8 @@ fn serves_its_assets_and_nothing_else() {
         assert_eq!(status, 200, "{path}");
         assert!(body.len() > 100, "{path}");
     }
+    // Browsers ask for an icon: no icon, but no 404 either.
+    assert_eq!(get(&server, "/favicon.ico").0, 204);
     for path in [
         "/../Cargo.toml",
         "/vendor/../../Cargo.toml",
@@ -146,7 +156,7 @@ fn malformed_messages_get_an_error_and_change_nothing() {
 #[test]
 fn a_drag_streams_every_step_and_a_newer_one_wins() {
     let (server, saves) = server("drag");
-    let (mut c, mesh, first) = connect(&server);
+    let (mut c, page, mesh, first) = connect_page(&server);
     let nv = mesh["vertices"].as_u64().unwrap() as usize;
     let p = |s: &Value, key: &str, v: usize| {
         let f = |k: usize| s[key][3 * v + k].as_f64().unwrap();
@@ -187,7 +197,7 @@ fn a_drag_streams_every_step_and_a_newer_one_wins() {
         last["offset"] != first["offset"],
         "the drag changed nothing"
     );
-    assert_eq!(last["can_undo"], true);
+    assert_eq!(last["undo_page"], page);
 
     // Undo, one step per gesture: back to the start.
     c.send(&json!({"type": "undo"})).unwrap();
@@ -198,8 +208,8 @@ fn a_drag_streams_every_step_and_a_newer_one_wins() {
         undone["base"] == first["base"],
         "two undos did not restore the start"
     );
-    assert_eq!(undone["can_undo"], false);
-    assert_eq!(undone["can_redo"], true);
+    assert_eq!(undone["undo_page"], Value::Null);
+    assert_eq!(undone["redo_page"], page);
 
     // Save, then load it back: the same geometry, written as a structure directory.
     c.send(&json!({"type": "redo"})).unwrap();
@@ -266,6 +276,25 @@ fn a_design_surface_gets_a_hex_mesh_first() {
     assert!(mesh["source"].as_str().unwrap().contains("saddle.obj"));
     let omega = state["measures"]["omega_max_deg"].as_f64().unwrap();
     assert!(omega < 0.01, "omega {omega}");
+    // The page may make it again with another cell count, within the library's bounds.
+    assert_eq!(mesh["remake"]["cells"], 200);
+    let mut c = Client::connect(&format!("ws://{}/ws", server.addr)).unwrap();
+    c.until("state", |_| true).unwrap();
+    for (cells, says) in [(0, "--cells 0"), (10_000_000, "--cells 10000000")] {
+        c.send(&json!({"type": "remake", "cells": cells})).unwrap();
+        let e = c.until("error", |_| true).unwrap();
+        let text = e["message"].as_str().unwrap();
+        assert!(
+            text.starts_with("remake failed") && text.contains(says),
+            "{text}"
+        );
+    }
+    c.send(&json!({"type": "remake", "cells": 120})).unwrap();
+    let remade = c.until("mesh", |_| true).unwrap();
+    assert_eq!(remade["remake"]["cells"], 120);
+    let fewer = remade["vertices"].as_u64().unwrap();
+    assert!(fewer < nv, "{fewer} vertices for 120 cells, {nv} for 200");
+    assert!(remade["source"].as_str().unwrap().contains("120 cells"));
     server.stop();
     // A missing file is an error before anything is served.
     let missing = Source::from_path(&dir.join("missing.obj"), 200, Walls::Across);
@@ -329,8 +358,9 @@ fn only_its_own_page_may_open_the_websocket() {
 fn two_pages_gestures_are_two_undo_steps() {
     // Each page numbers its gestures from 1: page B's gesture 1 is not page A's.
     let (server, _) = server("two-pages");
-    let (mut a, _, first) = connect(&server);
-    let (mut b, _, _) = connect(&server);
+    let (mut a, page_a, _, first) = connect_page(&server);
+    let (mut b, page_b, _, _) = connect_page(&server);
+    assert_ne!(page_a, page_b);
     let z = |s: &Value, v: usize| s["base"][3 * v + 2].as_f64().unwrap();
     let moved = |s: &Value, v: usize| (z(s, v) - z(&first, v)).abs() > 1e-6;
     a.send(&json!({"type": "slide", "vertex": 0, "distance": 0.1, "stroke": 1}))
@@ -343,7 +373,229 @@ fn two_pages_gestures_are_two_undo_steps() {
     b.send(&json!({"type": "undo"})).unwrap();
     let undone = b.until("state", |s| !moved(s, 5)).unwrap();
     assert!(moved(&undone, 0), "one undo took both pages' gestures");
-    assert_eq!(undone["can_undo"], true);
+    assert_eq!(undone["undo_page"], page_a);
+    // A's gesture is A's to undo: B hears so, and nothing changes.
+    b.send(&json!({"type": "undo"})).unwrap();
+    let e = b.until("error", |_| true).unwrap();
+    assert!(
+        e["message"].as_str().unwrap().contains("another page's"),
+        "{e}"
+    );
+    a.send(&json!({"type": "undo"})).unwrap();
+    a.until("state", |s| !moved(s, 0)).unwrap();
+    server.stop();
+}
+
+/// A page opened after another page's edits shows them, but has nothing to undo.
+#[test]
+fn a_new_page_starts_from_the_shared_state_without_its_undo_history() {
+    let (server, _) = server("new-page");
+    let (mut a, page_a, _, _) = connect_page(&server);
+    a.send(&json!({"type": "slide", "vertex": 2, "distance": 0.05, "stroke": 1}))
+        .unwrap();
+    let edited = a.until("state", |s| s["undo_page"] == page_a).unwrap();
+    let (mut b, page_b, _, shown) = connect_page(&server);
+    assert_eq!(shown["base"], edited["base"], "the new page shows the edit");
+    assert_eq!(shown["undo_page"], page_a);
+    assert_ne!(shown["undo_page"], page_b, "the new page could undo");
+    b.send(&json!({"type": "undo"})).unwrap();
+    let e = b.until("error", |_| true).unwrap();
+    assert!(e["message"]
+        .as_str()
+        .unwrap()
+        .contains("nothing of this page's to undo"));
+    b.send(&json!({"type": "redo"})).unwrap();
+    let e = b.until("error", |_| true).unwrap();
+    assert!(
+        e["message"].as_str().unwrap().contains("nothing to redo"),
+        "{e}"
+    );
+    server.stop();
+}
+
+/// A slide stops at `MAX_SLIDE_OFF_S` mean edge lengths from S, and the page hears why; a
+/// small one that stays on S goes through without a word.
+#[test]
+fn a_slide_off_s_is_stopped_at_the_limit_with_a_warning() {
+    use honeycomb::interactive::MAX_SLIDE_OFF_S;
+    let (server, _) = server("slide-limit");
+    let (mut c, _, first) = connect(&server);
+    let edge = first["measures"]["mean_edge_length"].as_f64().unwrap();
+    let v = 7;
+    // What a 48-pixel drag asked for: several edge lengths away from S.
+    c.send(&json!({"type": "slide", "vertex": v, "distance": -5.0 * edge, "stroke": 1}))
+        .unwrap();
+    let w = c.until("warning", |_| true).unwrap();
+    let text = w["message"].as_str().unwrap();
+    assert!(
+        text.contains(&format!("slide of vertex {v} stopped")) && text.contains("off S"),
+        "{text}"
+    );
+    assert!(text.contains("model units"), "{text}");
+    let s = c.until("state", |_| true).unwrap();
+    let off = s["measures"]["closeness_max"].as_f64().unwrap();
+    assert!(
+        (off - MAX_SLIDE_OFF_S).abs() < 5e-3,
+        "the vertex ended {off} edge lengths off S"
+    );
+    // Further out: refused, the vertex stays at the limit.
+    c.send(&json!({"type": "slide", "vertex": v, "distance": -edge, "stroke": 1}))
+        .unwrap();
+    c.until("warning", |_| true).unwrap();
+    let s = c.until("state", |_| true).unwrap();
+    assert!(s["measures"]["closeness_max"].as_f64().unwrap() < MAX_SLIDE_OFF_S + 5e-3);
+    // Back towards S is always allowed.
+    c.send(&json!({"type": "slide", "vertex": v, "distance": 0.1 * edge, "stroke": 1}))
+        .unwrap();
+    let s = c.until("state", |_| true).unwrap();
+    assert!(s["measures"]["closeness_max"].as_f64().unwrap() < MAX_SLIDE_OFF_S - 0.05);
+    // A slide that stays on S (a hundredth of an edge): no warning before its state.
+    c.send(&json!({"type": "undo"})).unwrap();
+    c.until("state", |_| true).unwrap();
+    c.send(&json!({"type": "slide", "vertex": v, "distance": 0.01 * edge, "stroke": 2}))
+        .unwrap();
+    let next = c.receive().unwrap();
+    assert_eq!(next["type"], "state", "{next}");
+    server.stop();
+}
+
+/// A raw GET's status, headers and body.
+fn get_with_headers(server: &Server, path: &str) -> (u16, String, Vec<u8>) {
+    let mut s = TcpStream::connect(server.addr).unwrap();
+    write!(
+        s,
+        "GET {path} HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let mut response = Vec::new();
+    s.read_to_end(&mut response).unwrap();
+    let split = response.windows(4).position(|w| w == b"\r\n\r\n").unwrap();
+    let head = String::from_utf8_lossy(&response[..split]).to_lowercase();
+    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
+    // Chunked or not, the first bytes of the body tell the format.
+    (status, head, response[split + 4..].to_vec())
+}
+
+#[test]
+fn downloads_are_the_export_files_of_the_current_state() {
+    let (server, _) = server("downloads");
+    let (mut c, _, _) = connect(&server);
+    let found = |body: &[u8], what: &[u8]| body.windows(what.len()).any(|w| w == what);
+    for (file, mime, inside) in [
+        ("structure.glb", "model/gltf-binary", &b"glTF"[..]),
+        ("structure.obj", "model/obj", b"\nv "),
+        ("structure.mtl", "model/mtl", b"newmtl"),
+        ("panels.dxf", "image/vnd.dxf", b"SECTION"),
+        ("panels.svg", "image/svg+xml", b"<svg"),
+        ("walls.csv", "text/csv", b"\n"),
+        ("nodes.csv", "text/csv", b"\n"),
+        ("bom.csv", "text/csv", b"\n"),
+    ] {
+        let (status, head, body) = get_with_headers(&server, &format!("/download/{file}"));
+        assert_eq!(status, 200, "{file}: {}", String::from_utf8_lossy(&body));
+        assert!(
+            head.contains(&format!("content-type: {mime}")),
+            "{file}: {head}"
+        );
+        assert!(
+            head.contains(&format!("attachment; filename=\"{file}\"")),
+            "{file}: {head}"
+        );
+        assert!(body.len() > 100 && found(&body, inside), "{file}");
+    }
+    // Units as `honeycomb export --units` takes them: the glTF (metres) of a model in mm is a
+    // thousandth of the one in m; nonsense is refused.
+    let glb_m = get_with_headers(&server, "/download/structure.glb").2;
+    let glb_mm = get_with_headers(&server, "/download/structure.glb?units=mm").2;
+    assert!(!glb_mm.is_empty() && glb_mm != glb_m);
+    let (status, _, body) = get_with_headers(&server, "/download/structure.glb?units=furlong");
+    assert_eq!(status, 400);
+    assert!(String::from_utf8_lossy(&body).contains("expected mm, cm, m, in or ft"));
+    let (status, _, body) = get_with_headers(&server, "/download/export.json");
+    assert_eq!(status, 404);
+    assert!(String::from_utf8_lossy(&body).contains("the downloads are structure.glb"));
+    // Mid-edit: a vertex dragged and the solve stopped before it re-solved is no honeycomb.
+    c.send(&json!({"type": "drag_vertex", "vertex": 7, "target": [0, 0, 100], "radius": 3, "stroke": 1}))
+        .unwrap();
+    c.send(&json!({"type": "cancel"})).unwrap();
+    let s = c
+        .until("state", |s| s["done"] == true && s["stroke"].is_null())
+        .unwrap();
+    assert!(
+        s["measures"]["omega_max_deg"].as_f64().unwrap() > 0.1,
+        "still a honeycomb"
+    );
+    let (status, _, body) = get_with_headers(&server, "/download/structure.glb");
+    let body = String::from_utf8_lossy(&body);
+    assert_eq!(status, 409, "{body}");
+    assert!(
+        body.contains("not a honeycomb") && body.contains("omega_max"),
+        "{body}"
+    );
+    server.stop();
+}
+
+#[test]
+fn remake_refuses_what_its_input_cannot_take() {
+    let (server, _) = server("remake");
+    let (mut c, mesh, first) = connect(&server);
+    assert_eq!(
+        mesh["remake"]["cells"],
+        Value::Null,
+        "the demo has no cell count"
+    );
+    assert_eq!(mesh["remake"]["thickness"], true);
+    let edge = first["measures"]["mean_edge_length"].as_f64().unwrap();
+    for (m, says) in [
+        (json!({"type": "remake"}), "give cells or thickness"),
+        (json!({"type": "remake", "cells": 300}), "cells: the demo"),
+        (
+            json!({"type": "remake", "thickness": -1.0}),
+            "thickness -1: expected a positive length",
+        ),
+        (
+            json!({"type": "remake", "thickness": 0.0}),
+            "thickness 0: expected a positive length",
+        ),
+        (
+            json!({"type": "remake", "thickness": 1e30}),
+            "thickness 1e30: more than 1000 times",
+        ),
+    ] {
+        c.send(&m).unwrap();
+        let e = c.until("error", |_| true).unwrap();
+        let text = e["message"].as_str().unwrap();
+        assert!(
+            text.starts_with("remake failed") && text.contains(says),
+            "{m}: {text}"
+        );
+    }
+    for bad in [
+        r#"{"type":"remake","cells":-3}"#,
+        r#"{"type":"remake","thickness":"thick"}"#,
+        r#"{"type":"remake","thickness":0.1,"depth":2}"#,
+    ] {
+        c.send_text(bad).unwrap();
+        let e = c.until("error", |_| true).unwrap();
+        assert!(
+            e["message"]
+                .as_str()
+                .unwrap()
+                .starts_with("malformed message"),
+            "{bad}"
+        );
+    }
+    // A good thickness: a new mesh at that thickness, and a fresh undo history.
+    c.send(&json!({"type": "slide", "vertex": 1, "distance": 0.01 * edge, "stroke": 1}))
+        .unwrap();
+    c.until("state", |s| !s["undo_page"].is_null()).unwrap();
+    c.send(&json!({"type": "remake", "thickness": 0.5 * edge}))
+        .unwrap();
+    let mesh = c.until("mesh", |_| true).unwrap();
+    let t = mesh["thickness"].as_f64().unwrap();
+    assert!((t - 0.5 * edge).abs() < 1e-9 * edge, "thickness {t}");
+    let s = c.until("state", |_| true).unwrap();
+    assert_eq!(s["undo_page"], Value::Null);
     server.stop();
 }
 

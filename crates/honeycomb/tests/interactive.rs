@@ -288,3 +288,51 @@ fn a_long_vertex_drag_bends_the_cells_instead_of_folding_them() {
     );
     assert!(s.undo() && !s.can_undo(), "one gesture, one undo step");
 }
+
+/// A slide stops `MAX_SLIDE_OFF_S` from S with a warning; one that stays on S has none.
+#[test]
+fn a_slide_stops_at_the_limit_off_s_and_says_so() {
+    use honeycomb::interactive::MAX_SLIDE_OFF_S;
+    let ws = dome();
+    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let before = s.view();
+    let v = middle(&before.honeycomb);
+    let edge = before.measures.mean_edge_length;
+    let slide = |s: &mut EditSession, d: f64| {
+        s.apply(
+            Edit::SlideVertex {
+                vertex: v,
+                distance: d * edge,
+            },
+            None,
+        )
+        .unwrap()
+    };
+    assert!(slide(&mut s, 0.01).warning.is_none());
+    let far = slide(&mut s, -3.0).warning.expect("a warning");
+    assert!(far.contains("stopped") && far.contains("off S"), "{far}");
+    let off = s.view().measures.closeness_per_vertex[v];
+    assert!((off - MAX_SLIDE_OFF_S).abs() < 5e-3, "{off}");
+    // Between S's tolerance and the limit: through, with a warning.
+    let near = slide(&mut s, 0.1).warning.expect("a warning");
+    assert!(near.contains("pulls it back"), "{near}");
+}
+
+/// Undo steps remember who made them (an editor's pages undo only their own).
+#[test]
+fn undo_steps_know_their_author() {
+    let ws = dome();
+    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let slide = Edit::SlideVertex {
+        vertex: 3,
+        distance: 0.01,
+    };
+    assert_eq!(s.undo_author(), None);
+    s.apply_by(slide, Some(1), 7).unwrap();
+    s.apply_by(slide, Some(2), 9).unwrap();
+    assert_eq!(s.undo_author(), Some(9));
+    assert!(s.undo());
+    assert_eq!((s.undo_author(), s.redo_author()), (Some(7), Some(9)));
+    assert!(s.redo());
+    assert_eq!((s.undo_author(), s.redo_author()), (Some(9), None));
+}

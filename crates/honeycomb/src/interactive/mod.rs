@@ -184,10 +184,25 @@ pub const MAX_RADIUS: usize = 50;
 /// A single vertex (radius 0) moves at most 0.2 edges per gesture.
 pub const MOVE_PER_RING: f64 = 0.2;
 
+/// How far a slide (mode ii) may carry a vertex from S (mean edge lengths). A slide leaves M
+/// off S, and the next re-solve (modes i and iii hold M to S) pulls it back: a slide far off S
+/// is an edit that the next solve silently undoes, so it stops here. Beyond
+/// [`crate::reciprocal::ON_S`] (S's tolerance) a slide comes with a warning.
+pub const MAX_SLIDE_OFF_S: f64 = 0.25;
+
+/// What an applied edit has to tell the user.
+#[derive(Clone, Debug, Default)]
+pub struct Applied {
+    /// A slide that left its vertex off S, or was stopped at [`MAX_SLIDE_OFF_S`].
+    pub warning: Option<String>,
+}
+
 #[derive(Clone)]
 struct Snapshot {
     x: Vec<f64>,
     depths: Vec<f64>,
+    /// Who made the gesture this step takes back (or brings back, on the redo stack).
+    author: u64,
 }
 
 /// Vertex positions (normalized) and node axes at the start of a gesture.
@@ -300,10 +315,16 @@ impl<'a> EditSession<'a> {
 
     /// Applies an edit. Edits with the same `stroke` (one drag gesture) share an undo step.
     /// A solve still running is replaced by this edit's (warm-started where it stood).
-    pub fn apply(&mut self, edit: Edit, stroke: Option<u64>) -> Result<()> {
+    pub fn apply(&mut self, edit: Edit, stroke: Option<u64>) -> Result<Applied> {
+        self.apply_by(edit, stroke, 0)
+    }
+
+    /// [`EditSession::apply`] on behalf of `author` (an editor's page), whose undo step it
+    /// makes: see [`EditSession::undo_author`].
+    pub fn apply_by(&mut self, edit: Edit, stroke: Option<u64>, author: u64) -> Result<Applied> {
         self.check(&edit)?;
         if stroke.is_none() || stroke != self.stroke {
-            self.remember();
+            self.remember(author);
             self.stroke_start = None;
         }
         self.stroke = stroke;
@@ -346,9 +367,12 @@ impl<'a> EditSession<'a> {
                 let distance = distance.min(self.depths[vertex] - keep);
                 let axis = self.axes_now()[vertex];
                 let at = self.layout.vertex(vertex);
-                let moved = self.layout.vertex_at(&self.x, vertex) + axis * (distance / unit);
+                let from = self.layout.vertex_at(&self.x, vertex);
+                let (along, warning) = self.slide_near_s(vertex, from, axis, distance / unit);
+                let moved = from + axis * along;
                 self.x[at..at + 3].copy_from_slice(&moved.to_array());
-                self.depths[vertex] -= distance;
+                self.depths[vertex] -= along * unit;
+                return Ok(Applied { warning });
             }
             Edit::TurnAxis {
                 vertex,
@@ -369,7 +393,81 @@ impl<'a> EditSession<'a> {
                 self.active = Some(SolveState::new(self.options.eps));
             }
         }
-        Ok(())
+        Ok(Applied::default())
+    }
+
+    /// How far (normalized) a slide of `vertex` from `from` by `along` on `axis` may go: as
+    /// asked, unless that leaves it more than [`MAX_SLIDE_OFF_S`] from S; then as far as the
+    /// limit lets it (a vertex already beyond it may only come closer). With a warning when
+    /// the vertex ends off S.
+    fn slide_near_s(
+        &self,
+        vertex: usize,
+        from: Vec3,
+        axis: Vec3,
+        along: f64,
+    ) -> (f64, Option<String>) {
+        let off = |t: f64| {
+            let p = from + axis * t;
+            (self.ws.surface.closest_point(p).point - p).norm()
+        };
+        let mut t = along;
+        let limited = off(along) > MAX_SLIDE_OFF_S;
+        if limited {
+            let start = off(0.0);
+            if start >= MAX_SLIDE_OFF_S {
+                // Already beyond the limit (a loaded structure): only towards S.
+                t = if off(along) < start { along } else { 0.0 };
+            } else {
+                // The distance to S grows along the axis near S: bisect for the limit.
+                let (mut lo, mut hi) = (0.0, along);
+                for _ in 0..50 {
+                    let mid = 0.5 * (lo + hi);
+                    if off(mid) <= MAX_SLIDE_OFF_S {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                t = lo;
+            }
+        }
+        let now = off(t);
+        let on_s = crate::reciprocal::ON_S;
+        let lengths = |x: f64| {
+            format!(
+                "{} mean edge lengths ({} model units)",
+                crate::error::rounded(x, 3),
+                crate::error::rounded(x * self.ws.frame.unit, 4)
+            )
+        };
+        let warning = if limited {
+            Some(format!(
+                "slide of vertex {vertex} stopped {} off S, the limit: farther, the next \
+                 re-solve (move vertex, turn axis) would pull it back to S and undo the slide",
+                lengths(now)
+            ))
+        } else if now > on_s {
+            Some(format!(
+                "vertex {vertex} is {} off S (on S means within {on_s}): the next re-solve \
+                 (move vertex, turn axis) pulls it back to S",
+                lengths(now)
+            ))
+        } else {
+            None
+        };
+        (t, warning)
+    }
+
+    /// The author of the gesture that [`EditSession::undo`] takes back, if any: an editor with
+    /// several pages lets a page undo only its own gestures, newest first.
+    pub fn undo_author(&self) -> Option<u64> {
+        self.undo.last().map(|s| s.author)
+    }
+
+    /// The author of the gesture that [`EditSession::redo`] brings back, if any.
+    pub fn redo_author(&self) -> Option<u64> {
+        self.redo.last().map(|s| s.author)
     }
 
     fn check(&self, edit: &Edit) -> Result<()> {
@@ -496,10 +594,11 @@ impl<'a> EditSession<'a> {
         Ok(steps)
     }
 
-    fn snapshot(&self) -> Snapshot {
+    fn snapshot(&self, author: u64) -> Snapshot {
         Snapshot {
             x: self.x.clone(),
             depths: self.depths.clone(),
+            author,
         }
     }
 
@@ -511,8 +610,8 @@ impl<'a> EditSession<'a> {
         self.stroke_start = None;
     }
 
-    fn remember(&mut self) {
-        self.undo.push(self.snapshot());
+    fn remember(&mut self, author: u64) {
+        self.undo.push(self.snapshot(author));
         if self.undo.len() > self.options.history {
             self.undo.remove(0);
         }
@@ -524,7 +623,8 @@ impl<'a> EditSession<'a> {
         let Some(s) = self.undo.pop() else {
             return false;
         };
-        self.redo.push(self.snapshot());
+        // Redo brings back the same author's gesture.
+        self.redo.push(self.snapshot(s.author));
         self.restore(s);
         true
     }
@@ -533,7 +633,7 @@ impl<'a> EditSession<'a> {
         let Some(s) = self.redo.pop() else {
             return false;
         };
-        self.undo.push(self.snapshot());
+        self.undo.push(self.snapshot(s.author));
         self.restore(s);
         true
     }
