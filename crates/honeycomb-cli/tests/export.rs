@@ -242,13 +242,19 @@ fn panels_read_back_with_every_label_and_the_walls_true_shape() {
             .map(|k| {
                 let (p, q, r) = (outline[k], outline[(k + 1) % 4], outline[(k + 3) % 4]);
                 let (u, v) = ([q[0] - p[0], q[1] - p[1]], [r[0] - p[0], r[1] - p[1]]);
-                (u[0] * v[1] - u[1] * v[0]).abs().atan2(u[0] * v[0] + u[1] * v[1]).to_degrees()
+                (u[0] * v[1] - u[1] * v[0])
+                    .abs()
+                    .atan2(u[0] * v[0] + u[1] * v[1])
+                    .to_degrees()
             })
             .collect();
         corners3.sort_by(f64::total_cmp);
         corners2.sort_by(f64::total_cmp);
         for (c2, c3) in corners2.iter().zip(&corners3) {
-            assert!((c2 - c3).abs() < 1e-9, "{name}: {corners2:?} vs {corners3:?}");
+            assert!(
+                (c2 - c3).abs() < 1e-9,
+                "{name}: {corners2:?} vs {corners3:?}"
+            );
         }
         for node in [a, b] {
             let label = format!("N{node}");
