@@ -106,6 +106,13 @@ const FIELD_SEEDS: u64 = 2;
 /// where the first grid's edges ran.
 const SECOND_TURN: f64 = std::f64::consts::FRAC_PI_6;
 
+/// The weight of the walls facing out (`AxisFieldOptions::facing`) in the last try of walls
+/// across on a flattened grid. Where S curves too sharply for the sheet, its fit turns some
+/// node triangles over (the orthogonality guides hold either side); which folds it takes
+/// depends on the start and the guides, so a fit that tells the sides apart is another
+/// chance, not a better default: it slows the fit on gently curved surfaces.
+const FACING_RETRY: f64 = 1.0;
+
 /// Runs the pipeline on `surface`.
 pub fn pipeline(
     surface: &PolyMesh,
@@ -124,8 +131,13 @@ pub fn pipeline(
     let mut attempts = attempts(&options.init, walls);
     let mut spent = 0;
     for k in 0..attempts.len() {
-        let (init_options, what) = attempts[k].clone();
+        let (init_options, what, facing) = attempts[k].clone();
         let init_options = &init_options;
+        let mut tried = options.clone();
+        if let Some(weight) = facing {
+            tried.across.field.facing = weight;
+        }
+        let options = &tried;
         let last = k + 1 == attempts.len();
         progress(Step::Init);
         let (made, made_notes) =
@@ -150,7 +162,9 @@ pub fn pipeline(
                 seed,
                 ..init_options.clone()
             };
-            attempts[k + 1] = (next, format!("--method field --seed {seed}"));
+            attempts[k + 1] = (next, format!("--method field --seed {seed}"), None);
+            // The tries after it are of the flattened grid, which did not suit S.
+            attempts.truncate(k + 2);
         }
         // Uniform walls on a grid that is not the plan view (S folds over seen from it) are the
         // guided projection's.
@@ -203,10 +217,12 @@ pub fn pipeline(
     unreachable!("the last attempt returns")
 }
 
-/// The base meshes the pipeline tries in turn, each with how a note names it: the field
-/// method's seed and the next; walls across on a flattened grid, the grid and the grid turned
-/// by [`SECOND_TURN`]; else the one asked for.
-fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
+/// The base meshes the pipeline tries in turn, each with how a note names it and the weight
+/// of the walls facing out in the sheet's fit (`AxisFieldOptions::facing`; `None`: as the
+/// options have it): the field method's seed and the next; walls across on a flattened grid,
+/// the grid, the grid turned by [`SECOND_TURN`], and the grid again with the walls facing out
+/// ([`FACING_RETRY`]); else the one asked for.
+fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String, Option<f64>)> {
     match (init.method, walls) {
         (Method::Field, _) => (0..FIELD_SEEDS)
             .map(|k| {
@@ -215,7 +231,7 @@ fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
                     seed,
                     ..init.clone()
                 };
-                (options, format!("--seed {seed}"))
+                (options, format!("--seed {seed}"), None)
             })
             .collect(),
         (Method::Flatten, Walls::Across) => {
@@ -224,11 +240,20 @@ fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
                 ..init.clone()
             };
             vec![
-                (init.clone(), "the flattened grid".into()),
-                (turned, "the flattened grid turned by 30 degrees".into()),
+                (init.clone(), "the flattened grid".into(), None),
+                (
+                    turned,
+                    "the flattened grid turned by 30 degrees".into(),
+                    None,
+                ),
+                (
+                    init.clone(),
+                    "the flattened grid with the sheet's walls facing out".into(),
+                    Some(FACING_RETRY),
+                ),
             ]
         }
-        _ => vec![(init.clone(), "the grid".into())],
+        _ => vec![(init.clone(), "the grid".into(), None)],
     }
 }
 
