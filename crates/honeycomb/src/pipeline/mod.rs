@@ -580,10 +580,16 @@ fn across_or_none(
         flaws(&across.measures, options.min_edge)
     );
     let mut repair_iterations = 0;
-    let repaired = repair(&across, surface, model_surface, options, &mut |info| {
-        repair_iterations += 1;
-        progress(Step::Iteration("repairing", 1, info))
-    })?;
+    // A few steps from where the vertices stand move them a little: they do not turn a
+    // mirrored node back over, whose walls would have to pass through each other.
+    let repaired = if across.measures.omega_max_deg >= MIRRORED_NODE_DEG {
+        None
+    } else {
+        repair(&across, surface, model_surface, options, &mut |info| {
+            repair_iterations += 1;
+            progress(Step::Iteration("repairing", 1, info))
+        })?
+    };
     spent += repair_iterations;
     let (dropped, trimmed) = (across.dropped_cells, across.trimmed_cells);
     let field_iterations = across.field_iterations;
@@ -611,7 +617,11 @@ fn across_or_none(
             solved.notes.append(&mut notes);
             let honeycomb = solved.report.honeycomb.then_some(solved);
             Ok(Err(NotClean {
-                why: format!("{why}, and a repair did not mend them"),
+                why: if repair_iterations == 0 {
+                    format!("{why}, which a repair does not turn back")
+                } else {
+                    format!("{why}, and a repair did not mend them")
+                },
                 iterations: spent,
                 honeycomb,
             }))
@@ -697,6 +707,10 @@ fn uncross(
 /// What `is_clean` asks of a node's angles (degrees) and a wall's planarity.
 const CLEAN_OMEGA_DEG: f64 = 0.01;
 const CLEAN_DELTA: f64 = 1e-6;
+
+/// A node this far off 120 degrees is mirrored (a trivalent one measures 120): no repair is
+/// tried.
+const MIRRORED_NODE_DEG: f64 = 90.0;
 
 /// Iterations of the repair at most.
 const REPAIR_ITERATIONS: usize = 20;
