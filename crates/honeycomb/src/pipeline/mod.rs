@@ -5,9 +5,10 @@
 //!   size on S; the node axes are fitted to S's normals as a folded sheet and the vertices
 //!   placed on its walls (`reciprocal`), boundary cells the placement breaks dropped and those
 //!   standing out beyond S's border trimmed. A surface that curves more than a lattice of the
-//!   cells asked absorbs is refused at once. Where the result is not clean (after a repair and
-//!   the lattice turned by 30 degrees), the guided projection of the same mesh is kept instead,
-//!   unless it is no honeycomb while the walls across S are one.
+//!   cells asked absorbs is refused at once. Where the result is not clean (after a repair, the
+//!   lattice turned by 30 degrees and the first lattice again with the sheet's walls facing
+//!   out), the guided projection of the same mesh is kept instead, unless it is no honeycomb
+//!   while the walls across S are one.
 //! - [`Walls::Uniform`]: S seen along its mean normal, a regular grid laid in plan view and
 //!   lifted: a honeycomb with parallel node axes (vertical walls on a roof) from the start.
 //! - [`Walls::Direction`]: the same seen along a given direction.
