@@ -304,6 +304,7 @@ fn sheet_families_match_finite_differences() {
         Box::new(OrthogonalDifference {
             name: "orthogonal_difference",
             rows: directions(7),
+            value: 0.5,
             weight: 1.0,
             role: crate::solve::Role::Guide,
             fade: 0.5,

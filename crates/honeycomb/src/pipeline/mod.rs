@@ -5,9 +5,10 @@
 //!   size on S; the node axes are fitted to S's normals as a folded sheet and the vertices
 //!   placed on its walls (`reciprocal`), boundary cells the placement breaks dropped and those
 //!   standing out beyond S's border trimmed. A surface that curves more than a lattice of the
-//!   cells asked absorbs is refused at once. Where the result is not clean (after a repair and
-//!   the lattice turned by 30 degrees), the guided projection of the same mesh is kept instead,
-//!   unless it is no honeycomb while the walls across S are one.
+//!   cells asked absorbs is refused at once. Where the result is not clean (after a repair, the
+//!   lattice turned by 30 degrees and the first lattice again with the sheet's walls facing
+//!   out), the guided projection of the same mesh is kept instead, unless it is no honeycomb
+//!   while the walls across S are one.
 //! - [`Walls::Uniform`]: S seen along its mean normal, a regular grid laid in plan view and
 //!   lifted: a honeycomb with parallel node axes (vertical walls on a roof) from the start.
 //! - [`Walls::Direction`]: the same seen along a given direction.
@@ -106,6 +107,13 @@ const FIELD_SEEDS: u64 = 2;
 /// where the first grid's edges ran.
 const SECOND_TURN: f64 = std::f64::consts::FRAC_PI_6;
 
+/// The weight of the walls facing out (`AxisFieldOptions::facing`) in the last try of walls
+/// across on a flattened grid. Where S curves too sharply for the sheet, its fit turns some
+/// node triangles over (the orthogonality guides hold either side); which folds it takes
+/// depends on the start and the guides, so a fit that tells the sides apart is another
+/// chance, not a better default: it slows the fit on gently curved surfaces.
+const FACING_RETRY: f64 = 1.0;
+
 /// Runs the pipeline on `surface`.
 pub fn pipeline(
     surface: &PolyMesh,
@@ -124,8 +132,13 @@ pub fn pipeline(
     let mut attempts = attempts(&options.init, walls);
     let mut spent = 0;
     for k in 0..attempts.len() {
-        let (init_options, what) = attempts[k].clone();
+        let (init_options, what, facing) = attempts[k].clone();
         let init_options = &init_options;
+        let mut tried = options.clone();
+        if let Some(weight) = facing {
+            tried.across.field.facing = weight;
+        }
+        let options = &tried;
         let last = k + 1 == attempts.len();
         progress(Step::Init);
         let (made, made_notes) =
@@ -150,7 +163,9 @@ pub fn pipeline(
                 seed,
                 ..init_options.clone()
             };
-            attempts[k + 1] = (next, format!("--method field --seed {seed}"));
+            attempts[k + 1] = (next, format!("--method field --seed {seed}"), None);
+            // The tries after it are of the flattened grid, which did not suit S.
+            attempts.truncate(k + 2);
         }
         // Uniform walls on a grid that is not the plan view (S folds over seen from it) are the
         // guided projection's.
@@ -203,10 +218,12 @@ pub fn pipeline(
     unreachable!("the last attempt returns")
 }
 
-/// The base meshes the pipeline tries in turn, each with how a note names it: the field
-/// method's seed and the next; walls across on a flattened grid, the grid and the grid turned
-/// by [`SECOND_TURN`]; else the one asked for.
-fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
+/// The base meshes the pipeline tries in turn, each with how a note names it and the weight
+/// of the walls facing out in the sheet's fit (`AxisFieldOptions::facing`; `None`: as the
+/// options have it): the field method's seed and the next; walls across on a flattened grid,
+/// the grid, the grid turned by [`SECOND_TURN`], and the grid again with the walls facing out
+/// ([`FACING_RETRY`]); else the one asked for.
+fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String, Option<f64>)> {
     match (init.method, walls) {
         (Method::Field, _) => (0..FIELD_SEEDS)
             .map(|k| {
@@ -215,7 +232,7 @@ fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
                     seed,
                     ..init.clone()
                 };
-                (options, format!("--seed {seed}"))
+                (options, format!("--seed {seed}"), None)
             })
             .collect(),
         (Method::Flatten, Walls::Across) => {
@@ -224,11 +241,20 @@ fn attempts(init: &InitOptions, walls: Walls) -> Vec<(InitOptions, String)> {
                 ..init.clone()
             };
             vec![
-                (init.clone(), "the flattened grid".into()),
-                (turned, "the flattened grid turned by 30 degrees".into()),
+                (init.clone(), "the flattened grid".into(), None),
+                (
+                    turned,
+                    "the flattened grid turned by 30 degrees".into(),
+                    None,
+                ),
+                (
+                    init.clone(),
+                    "the flattened grid with the sheet's walls facing out".into(),
+                    Some(FACING_RETRY),
+                ),
             ]
         }
-        _ => vec![(init.clone(), "the grid".into())],
+        _ => vec![(init.clone(), "the grid".into(), None)],
     }
 }
 
@@ -555,10 +581,16 @@ fn across_or_none(
         flaws(&across.measures, options.min_edge)
     );
     let mut repair_iterations = 0;
-    let repaired = repair(&across, surface, model_surface, options, &mut |info| {
-        repair_iterations += 1;
-        progress(Step::Iteration("repairing", 1, info))
-    })?;
+    // A few steps from where the vertices stand move them a little: they do not turn a
+    // mirrored node back over, whose walls would have to pass through each other.
+    let repaired = if across.measures.omega_max_deg >= MIRRORED_NODE_DEG {
+        None
+    } else {
+        repair(&across, surface, model_surface, options, &mut |info| {
+            repair_iterations += 1;
+            progress(Step::Iteration("repairing", 1, info))
+        })?
+    };
     spent += repair_iterations;
     let (dropped, trimmed) = (across.dropped_cells, across.trimmed_cells);
     let field_iterations = across.field_iterations;
@@ -586,7 +618,11 @@ fn across_or_none(
             solved.notes.append(&mut notes);
             let honeycomb = solved.report.honeycomb.then_some(solved);
             Ok(Err(NotClean {
-                why: format!("{why}, and a repair did not mend them"),
+                why: if repair_iterations == 0 {
+                    format!("{why}, which a repair does not turn back")
+                } else {
+                    format!("{why}, and a repair did not mend them")
+                },
                 iterations: spent,
                 honeycomb,
             }))
@@ -672,6 +708,10 @@ fn uncross(
 /// What `is_clean` asks of a node's angles (degrees) and a wall's planarity.
 const CLEAN_OMEGA_DEG: f64 = 0.01;
 const CLEAN_DELTA: f64 = 1e-6;
+
+/// A node this far off 120 degrees is mirrored (a trivalent one measures 120): no repair is
+/// tried.
+const MIRRORED_NODE_DEG: f64 = 90.0;
 
 /// Iterations of the repair at most.
 const REPAIR_ITERATIONS: usize = 20;

@@ -92,6 +92,7 @@ pub fn walls_across(
         })
     };
     let mut drops = 0;
+    let mut unconverged_before = false;
     loop {
         let targets: Vec<Vec3> = mesh
             .vertices
@@ -103,11 +104,18 @@ pub fn walls_across(
             .iter()
             .map(|&[a, b]| (mesh.vertices[a] - mesh.vertices[b]).normalized())
             .collect();
+        let facing: Vec<Vec3> = conn
+            .edges
+            .iter()
+            .zip(&edges)
+            .map(|(&[a, b], &d)| d.cross(targets[a] + targets[b]).normalized())
+            .collect();
         let field = fit_axis_field(
             &sheet,
             &points,
             &targets,
             &edges,
+            &facing,
             &options.field,
             &mut |i| progress(Stage::AxisField, i),
         )?;
@@ -138,7 +146,14 @@ pub fn walls_across(
         );
         let measures = measure(&honeycomb, model_surface);
         let broken = broken_boundary_cells(&honeycomb, &conn, &measures);
-        if broken.is_empty() || drops == options.max_drops || dropped_cells + broken.len() > allowed
+        // A sheet whose fit falls short of unit walls twice in a row folds too sharply for
+        // fewer boundary cells to help.
+        let hopeless = !field_converged && unconverged_before;
+        unconverged_before = !field_converged;
+        if broken.is_empty()
+            || hopeless
+            || drops == options.max_drops
+            || dropped_cells + broken.len() > allowed
         {
             let across = Across {
                 honeycomb,

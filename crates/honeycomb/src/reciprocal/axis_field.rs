@@ -27,7 +27,10 @@ pub struct AxisFieldOptions {
     pub axes: f64,
     /// Weight of the walls across the base mesh's edges, at the start; it fades.
     pub across: f64,
-    /// The factor the two fitting weights fade by per iteration.
+    /// Weight of each wall normal facing the way it faces in the base mesh (across its edge
+    /// within S), at the start; it fades.
+    pub facing: f64,
+    /// The factor the fitting weights fade by per iteration.
     pub fade: f64,
     pub eps: f64,
     /// The factor a step may multiply the energy by before it is halved: close to 1, since
@@ -44,6 +47,7 @@ impl Default for AxisFieldOptions {
             rigid: 10.0,
             axes: 1.0,
             across: 1.0,
+            facing: 0.0,
             fade: 0.5,
             eps: 1e-3,
             energy_growth: 1.1,
@@ -84,12 +88,14 @@ fn fitted_rotation(p: [Vec3; 3], first_side: Vec3) -> Matrix3 {
 
 /// Fits `sheet`, from `points`, to one target axis per vertex (`targets`, unit), keeping each
 /// wall across its edge, whose direction in the base mesh is `edges[e]` (unit, or zero for
+/// none), and its normal facing `facing[e]` (unit: the edge's normal within S, or zero for
 /// none).
 pub fn fit_axis_field(
     sheet: &Sheet,
     points: &[Vec3],
     targets: &[Vec3],
     edges: &[Vec3],
+    facing: &[Vec3],
     options: &AxisFieldOptions,
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<AxisField> {
@@ -120,6 +126,7 @@ pub fn fit_axis_field(
     let guide = |name, rows, weight| OrthogonalDifference {
         name,
         rows,
+        value: 0.0,
         weight,
         role: Role::Guide,
         fade: options.fade,
@@ -140,6 +147,21 @@ pub fn fit_axis_field(
             across_rows,
             options.across,
         )));
+    }
+    if options.facing > 0.0 {
+        // The orthogonality rows hold a triangle turned over as well as one facing up; these
+        // tell the two apart while the sheet takes its folds.
+        let rows = sheet
+            .sides
+            .iter()
+            .zip(facing)
+            .filter(|(_, d)| d.norm() > 0.0)
+            .map(|(&s, &d)| (s, d))
+            .collect();
+        families.push(Box::new(OrthogonalDifference {
+            value: 1.0,
+            ..guide("walls_facing_out", rows, options.facing)
+        }));
     }
     let mut positions: Vec<Option<Vec3>> = points.iter().map(|&p| Some(p)).collect();
     positions.extend(
