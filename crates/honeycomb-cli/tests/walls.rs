@@ -144,7 +144,10 @@ fn render_colours_walls_by_their_lean() {
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let text = std::fs::read_to_string(&svg).unwrap();
-    assert!(text.contains("axis to normal"), "legend missing");
+    assert!(
+        text.contains(">axis (deg)<") && text.contains("walls: mean "),
+        "legend missing"
+    );
     std::fs::remove_file(dir.join("surface.obj")).unwrap();
     let out = run([
         "render",
