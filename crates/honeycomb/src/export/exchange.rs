@@ -236,7 +236,7 @@ pub fn export(
 
     let dir = OutputDir::begin(out, inputs)?;
     let mut files = Vec::new();
-    let exported = Exported {
+    let mut exported = Exported {
         dir: out.to_path_buf(),
         files: Vec::new(),
         units: options.units,
@@ -251,7 +251,6 @@ pub fn export(
         label_height,
         bom,
     };
-    let mut exported = exported;
     dir.finish(Verdict::Passed, |staging| {
         let mut outputs = Outputs::new();
         let mut file =
