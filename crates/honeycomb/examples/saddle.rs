@@ -1,0 +1,28 @@
+//! The library from a program: a honeycomb with walls across a saddle, its measures, and the
+//! files a fabricator cuts. `cargo run --release --example saddle` writes `saddle-honeycomb/`
+//! and `saddle-export/`.
+
+use honeycomb::export::{export, write_structure, ExportOptions, Model};
+use honeycomb::generate::{design_surface, Shape};
+use honeycomb::pipeline::{pipeline, PipelineOptions};
+use std::path::Path;
+
+fn main() -> honeycomb::Result<()> {
+    let surface = design_surface(Shape::Saddle);
+    let made = pipeline(&surface, &PipelineOptions::new(750), &mut |_| {})?;
+    let m = &made.measures;
+    println!(
+        "{} cells: omega_max {:.1e} deg, delta_max {:.1e}, axis to normal {:.1} deg (parallel axes: {:.1})",
+        made.base.faces.len(),
+        m.omega_max_deg,
+        m.delta_max,
+        m.axis_normal_deg.mean,
+        m.parallel_baseline_deg.mean
+    );
+    let honeycomb = made.optimized.honeycomb;
+    write_structure(Path::new("saddle-honeycomb"), &honeycomb, &made.report)?;
+    let model = Model::new(honeycomb, Some(surface), Default::default())?;
+    let written = export(&model, &ExportOptions::default(), Path::new("saddle-export"), &[])?;
+    println!("{}", written.files.join(", "));
+    Ok(())
+}
