@@ -22,7 +22,12 @@ fn main() -> honeycomb::Result<()> {
     let honeycomb = made.optimized.honeycomb;
     write_structure(Path::new("saddle-honeycomb"), &honeycomb, &made.report)?;
     let model = Model::new(honeycomb, Some(surface), Default::default())?;
-    let written = export(&model, &ExportOptions::default(), Path::new("saddle-export"), &[])?;
+    let written = export(
+        &model,
+        &ExportOptions::default(),
+        Path::new("saddle-export"),
+        &[],
+    )?;
     println!("{}", written.files.join(", "));
     Ok(())
 }
