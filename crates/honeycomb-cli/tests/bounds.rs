@@ -129,9 +129,9 @@ fn a_picture_wider_than_its_bound_is_refused_and_the_widest_is_drawn() {
     let structure = dir.join("structure");
     common::demo(&structure, &["--vertices", "200"]);
     let picture = dir.join("picture.png");
-    for width in ["20000", "4294967295"] {
+    for width in ["20000", "4294967295", "479"] {
         let a = args(&[&"render", &structure, &"--width", &width, &"-o", &picture]);
-        let shown = format!("--width {width}: expected 200 to 8000 pixels");
+        let shown = format!("--width {width}: expected 480 to 8000 pixels");
         refused(&a, &[&shown], None);
         assert!(!picture.exists());
     }

@@ -409,6 +409,20 @@ fn export_refuses_what_it_cannot_make() {
         &["--material-thickness 50", "leave nothing"],
     );
     fails(&["--label-height", "0"], &["--label-height", "positive"]);
+    // Numbers too large for the geometry are refused, not written as NaN or infinity.
+    fails(
+        &["--material-thickness", "1e300", "--sheet", "1e308x1e308"],
+        &["--material-thickness 1e300", "leave nothing"],
+    );
+    fails(
+        &["--sheet", "1e308x1e308"],
+        &["--sheet 1e308x1e308", "more than 10000 times"],
+    );
+    // A sheet too small only for the gap a thick plate asks says so.
+    fails(
+        &["--material-thickness", "0.5", "--format", "svg"],
+        &["does not fit", "2 x --material-thickness", "thinner plate"],
+    );
     fails(
         &["--sheet", "0.2x0.2", "--format", "dxf"],
         &["--sheet 0.2x0.2", "does not fit"],

@@ -1,8 +1,10 @@
 //! `walls.csv`, `nodes.csv` and `bom.csv`: one row per wall, per node, and per item of the bill
 //! of materials. Lengths in model units, angles in degrees; positions and directions in the
-//! file frame's axes.
+//! file frame's axes. Numbers round-trip, in exponent notation where they are very small or
+//! very large.
 
 use super::Frame;
+use crate::error::short_number;
 use crate::fabrication::{Bom, NodeRow, WallRow};
 use std::io::Write;
 
@@ -43,15 +45,15 @@ pub fn write_walls(w: &mut dyn Write, rows: &[WallRow]) -> std::io::Result<()> {
             r.j.to_string(),
             cell(r.cell_left),
             cell(r.cell_right),
-            r.length.to_string(),
-            r.length_offset.to_string(),
-            r.height_i.to_string(),
-            r.height_j.to_string(),
-            r.end_angle_i_deg.to_string(),
-            r.end_angle_j_deg.to_string(),
-            r.surface_angle_deg.to_string(),
-            r.area.to_string(),
-            r.delta.to_string(),
+            short_number(r.length),
+            short_number(r.length_offset),
+            short_number(r.height_i),
+            short_number(r.height_j),
+            short_number(r.end_angle_i_deg),
+            short_number(r.end_angle_j_deg),
+            short_number(r.surface_angle_deg),
+            short_number(r.area),
+            short_number(r.delta),
         ])?;
     }
     done(out)
@@ -84,20 +86,20 @@ pub fn write_nodes(w: &mut dyn Write, rows: &[NodeRow], frame: Frame) -> std::io
         let p = frame.point(crate::Vec3::from_slice(&r.position));
         let a = frame.direction(crate::Vec3::from_slice(&r.axis));
         let mut record: Vec<String> = vec![r.node.to_string()];
-        record.extend(p.iter().chain(&a).map(|x| x.to_string()));
-        record.push(r.axis_length.to_string());
+        record.extend(p.iter().chain(&a).map(|&x| short_number(x)));
+        record.push(short_number(r.axis_length));
         record.push(r.walls.len().to_string());
         for k in 0..3 {
             match (r.walls.get(k), r.wall_directions.get(k)) {
                 (Some(e), Some(d)) => {
                     record.push(e.to_string());
                     let d = frame.direction(crate::Vec3::from_slice(d));
-                    record.extend(d.iter().map(|x| x.to_string()));
+                    record.extend(d.iter().map(|&x| short_number(x)));
                 }
                 _ => record.extend(std::iter::repeat_n(String::new(), 4)),
             }
         }
-        record.push(r.omega_deg.to_string());
+        record.push(short_number(r.omega_deg));
         out.write_record(&record)?;
     }
     done(out)
@@ -112,14 +114,14 @@ pub fn write_bom(w: &mut dyn Write, bom: &Bom, extra: &[(&str, String)]) -> std:
         ("walls", bom.walls.to_string()),
         ("nodes", bom.nodes.to_string()),
         ("cells", bom.cells.to_string()),
-        ("total_wall_area", bom.total_wall_area.to_string()),
-        ("total_edge_length", bom.total_edge_length.to_string()),
+        ("total_wall_area", short_number(bom.total_wall_area)),
+        ("total_edge_length", short_number(bom.total_edge_length)),
         (
             "distinct_wall_lengths",
             bom.distinct_wall_lengths.to_string(),
         ),
         ("node_types", bom.node_types.to_string()),
-        ("omega_max_deg", bom.omega_max_deg.to_string()),
+        ("omega_max_deg", short_number(bom.omega_max_deg)),
     ];
     for (item, value) in rows.iter().chain(extra) {
         out.write_record([item, value.as_str()])?;

@@ -3,7 +3,7 @@
 
 use super::sheets::draw;
 use super::{csv, dxf, obj, svg, Frame, Model, Units, Up};
-use crate::error::{rounded, Error, Result};
+use crate::error::{rounded, short_number, Error, Result};
 use crate::fabrication::{
     bill_of_materials, lay_out, node_rows, unroll, wall_rows, Bom, EndCut, Sheet,
 };
@@ -80,7 +80,8 @@ pub struct ExportOptions {
     pub material_thickness: Option<f64>,
     /// Sheet size (model units); by default 2.5 m x 1.25 m.
     pub sheet: Option<Sheet>,
-    /// Height of the panel labels (model units); by default a fifth of the median wall height.
+    /// Largest height of the panel labels (model units; each panel's shrink to fit it); by
+    /// default a fifth of the median wall height.
     pub label_height: Option<f64>,
 }
 
@@ -176,17 +177,22 @@ pub fn export(
     let panels = unroll(h, cut);
     if let Some(c) = cut {
         // Both ends set back must leave some of the panel's bottom and top.
-        if let Some(p) = panels.iter().find(|p| {
+        // Written so that a NaN (a plate too thick for the numbers) counts as nothing left.
+        let leaves_some = |p: &&crate::fabrication::Panel| {
             let [a, b, c2, d] = p.cut;
-            b[0] - a[0] <= 0.0 || c2[0] - d[0] <= 0.0
-        }) {
+            b[0] - a[0] > 0.0 && c2[0] - d[0] > 0.0 && p.cut.iter().flatten().all(|x| x.is_finite())
+        };
+        if let Some(p) = panels.iter().find(|p| !leaves_some(p)) {
             return Err(Error::Parameter(format!(
-                "--material-thickness {}: its end cuts (each {:.4} back from a node axis) leave \
-                 nothing of wall W{} ({:.4} long): give a thinner plate",
-                c.thickness,
-                c.setback,
+                "--material-thickness {}: its end cuts (each {} back from a node axis) leave \
+                 nothing of wall W{} ({} long): give a thinner plate",
+                rounded(c.thickness, 6),
+                rounded(c.setback, 4),
                 p.edge,
-                (h.base.vertices[p.nodes[1]] - h.base.vertices[p.nodes[0]]).norm()
+                rounded(
+                    (h.base.vertices[p.nodes[1]] - h.base.vertices[p.nodes[0]]).norm(),
+                    4
+                )
             )));
         }
     }
@@ -197,6 +203,24 @@ pub fn export(
             height: 1.25 / options.units.metres(),
         },
     };
+    // A sheet thousands of times a panel's size holds nothing a cutter takes, and its
+    // coordinates would drown the panels' in round-off.
+    let largest = panels
+        .iter()
+        .map(|p| {
+            let (lo, hi) = p.bounds();
+            (hi[0] - lo[0]).max(hi[1] - lo[1])
+        })
+        .fold(0.0, f64::max);
+    if sheet.width.max(sheet.height) > 1e4 * largest {
+        return Err(Error::Parameter(format!(
+            "--sheet {}x{}: more than 10000 times the largest panel ({}): give a sheet a cutter \
+             takes",
+            rounded(sheet.width, 4),
+            rounded(sheet.height, 4),
+            rounded(largest, 4)
+        )));
+    }
     let gap = match cut {
         Some(c) => 2.0 * c.thickness,
         None => 0.01 * sheet.width.min(sheet.height),
@@ -217,7 +241,12 @@ pub fn export(
         .iter()
         .any(|f| matches!(f, Format::Dxf | Format::Svg));
     let layout = if needs_layout {
-        Some(lay_out(&panels, sheet, gap)?)
+        let gap_from = if cut.is_some() {
+            "2 x --material-thickness"
+        } else {
+            "1% of the sheet"
+        };
+        Some(lay_out(&panels, sheet, gap, gap_from)?)
     } else {
         None
     };
@@ -300,16 +329,16 @@ pub fn export(
 /// The rows of `bom.csv` after the bill's own: the layout and the end cut.
 fn bom_extra(e: &Exported) -> Vec<(&'static str, String)> {
     let mut rows = vec![
-        ("sheet_width", e.sheet[0].to_string()),
-        ("sheet_height", e.sheet[1].to_string()),
+        ("sheet_width", short_number(e.sheet[0])),
+        ("sheet_height", short_number(e.sheet[1])),
     ];
     if e.sheets > 0 {
         rows.push(("sheets", e.sheets.to_string()));
     }
     if let (Some(t), Some(s), Some(b)) = (e.material_thickness, e.end_setback, e.end_bevel_deg) {
-        rows.push(("material_thickness", t.to_string()));
-        rows.push(("end_setback", s.to_string()));
-        rows.push(("end_bevel_deg", b.to_string()));
+        rows.push(("material_thickness", short_number(t)));
+        rows.push(("end_setback", short_number(s)));
+        rows.push(("end_bevel_deg", short_number(b)));
     }
     rows
 }

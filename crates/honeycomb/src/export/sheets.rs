@@ -1,7 +1,11 @@
 //! The panels on their sheets as a drawing: outlines, lines and labels on named layers, in sheet
 //! coordinates (model units, y up). `panels.dxf` and `panels.svg` write the same drawing.
 
-use crate::fabrication::{EndCut, Layout, Panel, Point};
+use crate::fabrication::{side, EndCut, Layout, Panel, Point};
+
+/// The width of a character of the labels' sans-serif font, in text heights (a generous
+/// average, so that a label is no wider than its room).
+const CHAR_WIDTH: f64 = 0.65;
 
 /// Where a shape goes: the cutter follows CUT; LABEL is engraved or drawn; BEVEL marks the ridge
 /// of a bevelled end (the node axis); SHEET is the sheet's border.
@@ -55,8 +59,8 @@ pub struct SheetDrawings {
 }
 
 /// Draws every placed panel: its cut outline, the ridge lines of bevelled ends, its label
-/// `W<edge>` in the middle and its nodes `N<i>` near the ends; each sheet has its border and a
-/// title line naming the end cut.
+/// `W<edge>` in the middle and its nodes `N<i>` at the ends, all inside the panel (at most
+/// `label_height` tall); each sheet has its border and a title line naming the end cut.
 pub fn draw(
     panels: &[Panel],
     layout: &Layout,
@@ -105,30 +109,46 @@ pub fn draw(
             }
         }
         let rotation_deg = if placed.turned { 90.0 } else { 0.0 };
-        let mid = |p: Point, q: Point, t: f64| [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
-        let centre = mid(mid(o[0], o[2], 0.5), mid(o[1], o[3], 0.5), 0.5);
-        let text = |at: Point, text: String| Shape::Text {
-            at: place(at),
-            height: label_height,
-            rotation_deg,
-            text,
-        };
-        items.push(item(Layer::Label, text(centre, format!("W{}", panel.edge))));
-        // The node ids sit inside each end, halfway up.
-        let end_a = mid(mid(o[0], o[3], 0.5), centre, 0.25);
-        let end_b = mid(mid(o[1], o[2], 0.5), centre, 0.25);
-        items.push(item(
-            Layer::Label,
-            text(end_a, format!("N{}", panel.nodes[0])),
-        ));
-        items.push(item(
-            Layer::Label,
-            text(end_b, format!("N{}", panel.nodes[1])),
-        ));
+        let labels = [
+            format!("N{}", panel.nodes[0]),
+            format!("W{}", panel.edge),
+            format!("N{}", panel.nodes[1]),
+        ];
+        // Along the line through the ends' midpoints, inside the cut outline: the three labels
+        // side by side, shrunk where the panel is too short or too low for `label_height`.
+        let c = panel.cut;
+        let (a, b) = (mid(c[0], c[3], 0.5), mid(c[1], c[2], 0.5));
+        let length = (b[0] - a[0]).hypot(b[1] - a[1]);
+        let low = side(c[0], c[3]).min(side(c[1], c[2]));
+        let chars: usize = labels.iter().map(|l| l.chars().count()).sum();
+        let height = label_height
+            .min(0.8 * length / (CHAR_WIDTH * chars as f64 + 2.0))
+            .min(0.5 * low);
+        let mut along = 0.1 * length;
+        let spare = 0.8 * length - CHAR_WIDTH * height * chars as f64;
+        for label in labels {
+            let w = CHAR_WIDTH * height * label.chars().count() as f64;
+            let at = mid(a, b, (along + 0.5 * w) / length);
+            items.push(item(
+                Layer::Label,
+                Shape::Text {
+                    at: place(at),
+                    height,
+                    rotation_deg,
+                    text: label,
+                },
+            ));
+            along += w + 0.5 * spare;
+        }
     }
     SheetDrawings {
         width: layout.sheet.width,
         height: layout.sheet.height,
         sheets,
     }
+}
+
+/// The point a share `t` of the way from `p` to `q`.
+fn mid(p: Point, q: Point, t: f64) -> Point {
+    [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]
 }

@@ -3,7 +3,7 @@
 //! unless only a quarter turn makes one fit.
 
 use super::panel::{bounds, Panel, Point};
-use crate::error::{Error, Result};
+use crate::error::{rounded, Error, Result};
 
 /// Sheet size (model units).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,9 +46,10 @@ pub struct Layout {
     pub placed: Vec<Placed>,
 }
 
-/// Lays `panels` out on as many sheets as they need. Fails, naming the wall, when a panel does
-/// not fit on a sheet either way round.
-pub fn lay_out(panels: &[Panel], sheet: Sheet, gap: f64) -> Result<Layout> {
+/// Lays `panels` out on as many sheets as they need, `gap` apart (`gap_from` says where the
+/// gap comes from, for the message). Fails, naming the wall, when a panel does not fit on a
+/// sheet either way round.
+pub fn lay_out(panels: &[Panel], sheet: Sheet, gap: f64, gap_from: &str) -> Result<Layout> {
     let room = [sheet.width - 2.0 * gap, sheet.height - 2.0 * gap];
     // Size and lie of each panel: as it is, or turned where only that fits.
     let sized: Vec<(bool, Point, Point)> = panels
@@ -64,9 +65,19 @@ pub fn lay_out(panels: &[Panel], sheet: Sheet, gap: f64) -> Result<Layout> {
                 Ok((true, lo, [hi[0] - lo[0], hi[1] - lo[1]]))
             } else {
                 Err(Error::Parameter(format!(
-                    "--sheet {}x{}: wall W{} is {:.4} x {:.4} and does not fit on a sheet \
-                     (with a gap of {} around it): give a larger sheet",
-                    sheet.width, sheet.height, p.edge, size[0], size[1], gap
+                    "--sheet {}x{}: wall W{} is {} x {} and does not fit on a sheet with a \
+                     gap of {} ({gap_from}) around it: give a larger sheet{}",
+                    rounded(sheet.width, 4),
+                    rounded(sheet.height, 4),
+                    p.edge,
+                    rounded(size[0], 4),
+                    rounded(size[1], 4),
+                    rounded(gap, 4),
+                    if gap_from.contains("thickness") {
+                        " or a thinner plate"
+                    } else {
+                        ""
+                    }
                 )))
             }
         })
@@ -147,7 +158,7 @@ mod tests {
             height: 2.0,
         };
         let gap = 0.05;
-        let layout = lay_out(&panels, sheet, gap).unwrap();
+        let layout = lay_out(&panels, sheet, gap, "test").unwrap();
         assert_eq!(layout.placed.len(), panels.len());
         assert!(layout.sheets >= 2, "{} sheets", layout.sheets);
         let outlines: Vec<(usize, Vec<Point>)> = layout
@@ -194,6 +205,7 @@ mod tests {
                 height: 0.5,
             },
             0.01,
+            "test",
         )
         .unwrap_err()
         .to_string();

@@ -8,7 +8,8 @@ use crate::structure::Honeycomb;
 pub type Point = [f64; 2];
 
 /// How a panel's ends are cut for plates of thickness T. At every node the three walls' mid-planes
-/// meet in the node axis at 120 degrees, so one cut serves every end: each face of the plate
+/// meet in the node axis at 120 degrees (to the structure's omega), so one cut serves every end
+/// (at a boundary node with two walls, the open side keeps a notch): each face of the plate
 /// stops `setback` short of the axis (square cut: the three plates touch along their edges
 /// around a triangular void), or the end is bevelled `bevel_deg` from square on both faces to a
 /// ridge on the axis (the plates close the node).

@@ -60,7 +60,7 @@ pub struct Bom {
     pub total_wall_area: f64,
     /// The length of all edges of M.
     pub total_edge_length: f64,
-    /// Wall lengths (along M) that differ by at least 1 mm.
+    /// How many different wall lengths (along M) there are, each rounded to 1 mm.
     pub distinct_wall_lengths: usize,
     /// Node types: one, as every node meets at 120 degrees (the worst by `omega_max_deg`).
     pub node_types: usize,

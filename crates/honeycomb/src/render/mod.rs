@@ -17,9 +17,9 @@ pub use spherical::spherical_scene;
 pub use view::{Camera, View};
 pub use walls::{walls_scene, Coloring};
 
-/// The narrowest picture that holds the colour bar and the widest one drawn: a PNG is held in
+/// The narrowest picture whose drawing, colour bar and legend all fit, and the widest one drawn: a PNG is held in
 /// memory about four times over at 3 bytes a pixel (0.8 GB at 8000 pixels square).
-pub const WIDTHS: std::ops::RangeInclusive<u32> = 200..=8000;
+pub const WIDTHS: std::ops::RangeInclusive<u32> = 480..=8000;
 
 /// Refuses a picture width outside [`WIDTHS`], before anything is drawn.
 pub fn check_width(width: u32) -> crate::Result<()> {

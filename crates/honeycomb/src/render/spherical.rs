@@ -18,8 +18,10 @@ struct Map {
     up: Vec3,
     /// Pixels per unit of the projection (a cap of angle theta has its rim at 2 sin(theta/2)).
     scale: f64,
-    /// The angle (degrees) from the centre that the disks' rim stands for.
+    /// The angle (degrees) from the centre that the disks' rim stands for, and its radius in
+    /// the projection.
     cap_deg: f64,
+    rim: f64,
     near: (f64, f64),
     far: (f64, f64),
 }
@@ -37,7 +39,8 @@ impl Map {
         let lateral = x.hypot(y);
         // Equal-area: a cap of angle theta around the centre maps to a disk of radius
         // 2 sin(theta / 2).
-        let rho = (2.0 * (1.0 - a.dot(c)).max(0.0)).sqrt();
+        // A corner on the other hemisphere (a cell across the rim) stays on the rim.
+        let rho = (2.0 * (1.0 - a.dot(c)).max(0.0)).sqrt().min(self.rim);
         let (dx, dy) = if lateral > 1e-15 {
             (x / lateral * rho, y / lateral * rho)
         } else {
@@ -88,6 +91,7 @@ pub fn spherical_scene(
         up,
         scale: r / rim,
         cap_deg,
+        rim,
         near: (if two { MARGIN + r } else { w / 2.0 }, TOP + r),
         far: (2.0 * MARGIN + 3.0 * r, TOP + r),
     };
@@ -174,8 +178,12 @@ pub fn spherical_scene(
     order.sort_by(|a, b| a.area.abs().total_cmp(&b.area.abs()));
     for cell in order {
         let points: Vec<Vec3> = faces[cell.cell].iter().map(|&v| axes[v]).collect();
-        let centroid = points.iter().fold(Vec3::ZERO, |s, &a| s + a);
-        let near = centroid.dot(toward) >= 0.0;
+        // On each disk whose hemisphere holds a corner of the cell.
+        let sides: Vec<bool> = [true, false]
+            .into_iter()
+            .filter(|&near| points.iter().any(|a| (a.dot(toward) >= 0.0) == near))
+            .filter(|&near| near || two)
+            .collect();
         let (class, fill, stroke) = if violating.contains(&cell.cell) {
             ("violation", Some(VIOLATION), (128, 0, 0))
         } else if cell.area.abs() <= image.tolerance {
@@ -183,13 +191,15 @@ pub fn spherical_scene(
         } else {
             ("nonzero-area", Some(NONZERO), (138, 90, 0))
         };
-        scene.shapes.push(Shape::Polygon {
-            points: points.iter().map(|&a| map.at(a, near)).collect(),
-            fill,
-            stroke: Some((stroke, 0.7)),
-            class: Some(class),
-            opacity: 0.6,
-        });
+        for &near in &sides {
+            scene.shapes.push(Shape::Polygon {
+                points: points.iter().map(|&a| map.at(a, near)).collect(),
+                fill,
+                stroke: Some((stroke, 0.7)),
+                class: Some(class),
+                opacity: 0.6,
+            });
+        }
     }
     // Parallel axes make every cell a point: mark where they are, or nothing would show.
     let spread = axes

@@ -97,10 +97,19 @@ fn auto_camera(points: &[Vec3]) -> Camera {
     }
     let u = normal.any_orthogonal().normalized();
     let v = normal.cross(u);
+    // In units of the shape's size, so that the fit's conditioning does not depend on the
+    // model's units.
+    let size = (points
+        .iter()
+        .map(|&p| (p - centre).norm_squared())
+        .sum::<f64>()
+        / points.len() as f64)
+        .sqrt()
+        .max(1e-300);
     // Height h = a x^2 + b xy + c y^2 + d x + e y + f over the plane, by least squares.
     let mut m = [[0.0; 7]; 6];
     for &p in points {
-        let d = p - centre;
+        let d = (p - centre) * (1.0 / size);
         let (px, py, h) = (d.dot(u), d.dot(v), d.dot(normal));
         let row = [px * px, px * py, py * py, px, py, 1.0];
         for i in 0..6 {
@@ -220,6 +229,22 @@ mod tests {
             (saddle.toward.z - 0.5).abs() < 1e-6,
             "30 degrees above: {saddle:?}"
         );
+    }
+
+    #[test]
+    fn the_auto_view_does_not_depend_on_the_units() {
+        let saddle = |k: f64| {
+            grid(|x, y| 0.3 * (x * x - y * y))
+                .iter()
+                .map(|&p| p * k)
+                .collect::<Vec<_>>()
+        };
+        let metres = View::Auto.camera(&saddle(1.0));
+        for k in [1e-3, 1e3, 1e6] {
+            let c = View::Auto.camera(&saddle(k));
+            assert!((c.toward - metres.toward).norm() < 1e-9, "{k}: {c:?}");
+        }
+        assert!((metres.toward - View::Iso.camera(&[]).toward).norm() > 0.1);
     }
 
     #[test]
