@@ -3,7 +3,7 @@
 
 use super::sheets::draw;
 use super::{csv, dxf, obj, svg, Frame, Model, Units, Up};
-use crate::error::{rounded, short_number, Error, Result};
+use crate::error::{check_positive_length, rounded, short_number, Error, Result};
 use crate::fabrication::{
     bill_of_materials, lay_out, node_rows, unroll, wall_rows, Bom, EndCut, Sheet,
 };
@@ -141,17 +141,6 @@ pub fn parse_sheet(text: &str) -> Result<Sheet> {
     Ok(Sheet { width, height })
 }
 
-fn positive(flag: &str, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::Parameter(format!(
-            "{flag} {}: must be a positive length",
-            rounded(value, 6)
-        )))
-    }
-}
-
 fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
     values.get(values.len() / 2).copied().unwrap_or(0.0)
@@ -171,7 +160,10 @@ pub fn export(
         return Err(Error::Parameter("--format: no format given".into()));
     }
     let cut = match options.material_thickness {
-        Some(t) => Some(EndCut::new(positive("--material-thickness", t)?)),
+        Some(t) => {
+            check_positive_length("--material-thickness", t)?;
+            Some(EndCut::new(t))
+        }
         None => None,
     };
     let panels = unroll(h, cut);
@@ -226,7 +218,10 @@ pub fn export(
         None => 0.01 * sheet.width.min(sheet.height),
     };
     let label_height = match options.label_height {
-        Some(l) => positive("--label-height", l)?,
+        Some(l) => {
+            check_positive_length("--label-height", l)?;
+            l
+        }
         None => 0.2 * median(h.depths().collect()),
     };
     if label_height > sheet.height {
@@ -240,13 +235,21 @@ pub fn export(
         .formats
         .iter()
         .any(|f| matches!(f, Format::Dxf | Format::Svg));
-    let layout = if needs_layout {
+    // One drawing of the sheets serves both panels.dxf and panels.svg.
+    let drawings = if needs_layout {
         let gap_from = if cut.is_some() {
             "2 x --material-thickness"
         } else {
             "1% of the sheet"
         };
-        Some(lay_out(&panels, sheet, gap, gap_from)?)
+        let layout = lay_out(&panels, sheet, gap, gap_from)?;
+        Some(draw(
+            &panels,
+            &layout,
+            label_height,
+            cut,
+            options.units.name(),
+        ))
     } else {
         None
     };
@@ -275,7 +278,7 @@ pub fn export(
         end_setback: cut.map(|c| c.setback),
         end_bevel_deg: cut.map(|c| c.bevel_deg),
         sheet: [sheet.width, sheet.height],
-        sheets: layout.as_ref().map_or(0, |l| l.sheets),
+        sheets: drawings.as_ref().map_or(0, |d| d.sheets.len()),
         gap,
         label_height,
         bom,
@@ -298,14 +301,13 @@ pub fn export(
                     file("structure.mtl", &mut |w| obj::write_mtl(w))?;
                 }
                 Format::Dxf | Format::Svg => {
-                    let layout = layout.as_ref().expect("laid out for dxf and svg");
-                    let drawings = draw(&panels, layout, label_height, cut, options.units.name());
+                    let drawings = drawings.as_ref().expect("drawn for dxf and svg");
                     if *format == Format::Dxf {
                         file("panels.dxf", &mut |w| {
-                            dxf::write_dxf(w, &drawings, options.units)
+                            dxf::write_dxf(w, drawings, options.units)
                         })?;
                     } else {
-                        let text = svg::svg_text(&drawings, options.units);
+                        let text = svg::svg_text(drawings, options.units);
                         file("panels.svg", &mut |w| w.write_all(text.as_bytes()))?;
                     }
                 }

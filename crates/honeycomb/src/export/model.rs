@@ -6,7 +6,7 @@ use super::Units;
 use crate::error::{Error, Result};
 use crate::mesh::{read_mesh, Connectivity, PolyMesh};
 use crate::report::Report;
-use crate::structure::{measure, Honeycomb, Measures};
+use crate::structure::{measure, per_wall_worse_end, Honeycomb, Measures};
 use crate::surface::Surface;
 use std::path::{Path, PathBuf};
 
@@ -73,12 +73,7 @@ impl Model {
     /// Per wall, the larger axis-to-normal angle (degrees) of its two nodes: how far the wall
     /// leans from standing across S.
     pub fn wall_lean_deg(&self) -> Vec<f64> {
-        let per_node = &self.measures.axis_normal_per_node;
-        self.honeycomb
-            .edges
-            .iter()
-            .map(|&[a, b]| per_node[a].max(per_node[b]))
-            .collect()
+        per_wall_worse_end(&self.honeycomb.edges, &self.measures.axis_normal_per_node)
     }
 }
 

@@ -1,6 +1,5 @@
-//! A perceptually ordered colour map (dark blue, teal, green, yellow), and the scale that maps
-//! a measure onto it: logarithmic when the values span more than two decades, as omega and
-//! delta of a good honeycomb do.
+//! A perceptually ordered colour map (dark blue, teal, green, yellow), the calm ramp for values
+//! within a tolerance, and round ticks and lengths for legends.
 
 /// Colour at `t` in [0, 1] as (r, g, b).
 pub fn color(t: f64) -> (u8, u8, u8) {
@@ -11,97 +10,30 @@ pub fn color(t: f64) -> (u8, u8, u8) {
         (94.0, 201.0, 98.0),
         (253.0, 231.0, 37.0),
     ];
-    let t = if t.is_finite() {
+    let x = unit(t) * (STOPS.len() - 1) as f64;
+    let k = (x.floor() as usize).min(STOPS.len() - 2);
+    mix(STOPS[k], STOPS[k + 1], x - k as f64)
+}
+
+/// `t` within [0, 1]; a value that is no number counts as 0.
+fn unit(t: f64) -> f64 {
+    if t.is_finite() {
         t.clamp(0.0, 1.0)
     } else {
         0.0
-    };
-    let x = t * (STOPS.len() - 1) as f64;
-    let k = (x.floor() as usize).min(STOPS.len() - 2);
-    let f = x - k as f64;
-    let (a, b) = (STOPS[k], STOPS[k + 1]);
-    let mix = |p: f64, q: f64| (p + (q - p) * f).round() as u8;
-    (mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+    }
 }
 
-/// Maps values to [0, 1].
-#[derive(Clone, Copy, Debug)]
-pub struct Scale {
-    pub min: f64,
-    pub max: f64,
-    pub log: bool,
-}
-
-impl Scale {
-    pub fn of(values: &[f64]) -> Scale {
-        let finite = values.iter().copied().filter(|v| v.is_finite());
-        let min = finite.clone().fold(f64::INFINITY, f64::min);
-        let max = finite.fold(f64::NEG_INFINITY, f64::max);
-        if !min.is_finite() {
-            return Scale {
-                min: 0.0,
-                max: 1.0,
-                log: false,
-            };
-        }
-        let positive_min = values
-            .iter()
-            .copied()
-            .filter(|&v| v > 0.0)
-            .fold(f64::INFINITY, f64::min);
-        let log = positive_min.is_finite() && max / positive_min > 100.0;
-        let min = if log { positive_min } else { min };
-        Scale { min, max, log }
-    }
-
-    /// From 0 to the largest finite value, linearly.
-    pub fn linear_from_zero(values: &[f64]) -> Scale {
-        let max = values
-            .iter()
-            .copied()
-            .filter(|v| v.is_finite())
-            .fold(0.0, f64::max);
-        Scale {
-            min: 0.0,
-            max: if max > 0.0 { max } else { 1.0 },
-            log: false,
-        }
-    }
-
-    pub fn position(&self, v: f64) -> f64 {
-        let (lo, hi, v) = if self.log {
-            (self.min.log10(), self.max.log10(), v.max(self.min).log10())
-        } else {
-            (self.min, self.max, v)
-        };
-        if hi > lo {
-            (v - lo) / (hi - lo)
-        } else {
-            0.5
-        }
-    }
-
-    /// The value at position `t` of the bar.
-    pub fn value(&self, t: f64) -> f64 {
-        if self.log {
-            10f64.powf(self.min.log10() + t * (self.max.log10() - self.min.log10()))
-        } else {
-            self.min + t * (self.max - self.min)
-        }
-    }
+/// The colour a share `f` of the way from `a` to `b`.
+fn mix(a: (f64, f64, f64), b: (f64, f64, f64), f: f64) -> (u8, u8, u8) {
+    let channel = |p: f64, q: f64| (p + (q - p) * f).round() as u8;
+    (channel(a.0, b.0), channel(a.1, b.1), channel(a.2, b.2))
 }
 
 /// The calm ramp for values within a tolerance (pale grey-blue at 0 to a steady blue at the
 /// tolerance): a good result reads as one quiet colour, whatever its round-off.
 pub fn calm(t: f64) -> (u8, u8, u8) {
-    let t = if t.is_finite() {
-        t.clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (a, b) = ((226.0, 232.0, 238.0), (49.0, 104.0, 166.0));
-    let mix = |p: f64, q: f64| (p + (q - p) * t).round() as u8;
-    (mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+    mix((226.0, 232.0, 238.0), (49.0, 104.0, 166.0), unit(t))
 }
 
 /// Over the tolerance.

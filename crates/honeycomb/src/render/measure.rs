@@ -4,7 +4,7 @@ use crate::analysis::spherical_image;
 use crate::mesh::Connectivity;
 use crate::reciprocal::ON_S;
 use crate::report::Report;
-use crate::structure::{Honeycomb, Measures};
+use crate::structure::{per_wall_worse_end, Honeycomb, Measures};
 use std::str::FromStr;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,12 +90,7 @@ impl WallMeasure {
         conn: &Connectivity,
         tolerance: f64,
     ) -> Vec<f64> {
-        let larger = |per_node: &[f64]| -> Vec<f64> {
-            h.edges
-                .iter()
-                .map(|&[a, b]| per_node[a].max(per_node[b]))
-                .collect()
-        };
+        let larger = |per_node: &[f64]| per_wall_worse_end(&h.edges, per_node);
         match self {
             WallMeasure::Delta => m.delta_per_wall.clone(),
             WallMeasure::Omega => larger(&m.omega_per_node),

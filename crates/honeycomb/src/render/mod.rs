@@ -9,7 +9,7 @@ mod spherical;
 mod view;
 mod walls;
 
-pub use colormap::{color, Scale};
+pub use colormap::color;
 pub use legend::Ramp;
 pub use measure::WallMeasure;
 pub use scene::{Scene, Shape, TextStyle};

@@ -76,6 +76,15 @@ impl Spread {
     }
 }
 
+/// Per wall (edge `[a, b]`), the larger of its two nodes' values: a wall is as bad as its
+/// worse end.
+pub fn per_wall_worse_end(edges: &[[usize; 2]], per_node: &[f64]) -> Vec<f64> {
+    edges
+        .iter()
+        .map(|&[a, b]| per_node[a].max(per_node[b]))
+        .collect()
+}
+
 /// The angle (degrees) between two lines with unit directions `a` and `b`.
 pub fn line_angle_deg(a: Vec3, b: Vec3) -> f64 {
     a.dot(b).abs().min(1.0).acos().to_degrees()
