@@ -16,6 +16,25 @@ pub enum Ramp {
     Range(f64),
 }
 
+impl Ramp {
+    /// The largest value on the ramp: the tolerance, or the range's top.
+    fn top(&self) -> f64 {
+        match *self {
+            Ramp::Tolerance(t) | Ramp::Range(t) => t,
+        }
+    }
+
+    /// A value's colour: the calm ramp up to the tolerance and red beyond it, or the full
+    /// colour map over the range.
+    pub fn colour(&self, v: f64) -> (u8, u8, u8) {
+        match *self {
+            Ramp::Tolerance(t) if v <= t => calm(v / t),
+            Ramp::Tolerance(_) => OVER,
+            Ramp::Range(top) => color(v / top),
+        }
+    }
+}
+
 /// The colour bar at `at` (its top left), `height` pixels tall: the measure's name, what it
 /// means and its unit above it, ticks beside it.
 pub fn colour_bar(
@@ -61,9 +80,10 @@ pub fn colour_bar(
         ));
     }
     let bar_top = top + 24.0 + 12.0 * lines.len() as f64;
-    let (over_box, top_value) = match *ramp {
-        Ramp::Tolerance(t) => (22.0, t),
-        Ramp::Range(r) => (0.0, r),
+    let top_value = ramp.top();
+    let over_box = match ramp {
+        Ramp::Tolerance(_) => 22.0,
+        Ramp::Range(_) => 0.0,
     };
     if over_box > 0.0 {
         scene.shapes.push(Shape::Rect {
@@ -89,10 +109,7 @@ pub fn colour_bar(
     let steps = 32;
     for i in 0..steps {
         let t = 1.0 - (i as f64 + 0.5) / steps as f64;
-        let fill = match ramp {
-            Ramp::Tolerance(_) => calm(t),
-            Ramp::Range(_) => color(t),
-        };
+        let fill = ramp.colour(t * ramp.top());
         scene.shapes.push(Shape::Rect {
             x,
             y: y0 + h * i as f64 / steps as f64,

@@ -2,7 +2,7 @@
 //! measure (painter's order, far walls first), a title, a verdict against the measure's
 //! tolerance, a colour bar with ticks and unit, an axis triad and a scale bar.
 
-use super::colormap::{calm, color, nice_ticks, OVER};
+use super::colormap::{nice_ticks, OVER};
 use super::legend::{axis_triad, colour_bar, scale_bar, Ramp};
 use super::scene::{Scene, Shape, TextStyle};
 use super::view::Camera;
@@ -180,16 +180,4 @@ pub fn walls_scene(h: &Honeycomb, coloring: &Coloring, camera: Camera, width: u3
     axis_triad(&mut scene, &camera, (MARGIN + 28.0, height - 30.0));
     scale_bar(&mut scene, span, k, (MARGIN + 80.0, height - 24.0), drawing);
     scene
-}
-
-impl Ramp {
-    /// A wall's colour: the calm ramp up to the tolerance and red beyond it, or the full
-    /// colour map over the range.
-    pub fn colour(&self, v: f64) -> (u8, u8, u8) {
-        match *self {
-            Ramp::Tolerance(t) if v <= t => calm(v / t),
-            Ramp::Tolerance(_) => OVER,
-            Ramp::Range(top) => color(v / top),
-        }
-    }
 }
