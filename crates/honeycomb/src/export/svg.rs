@@ -4,6 +4,7 @@
 
 use super::sheets::{Layer, Shape, SheetDrawings};
 use super::Units;
+use crate::render::escape;
 use std::fmt::Write as _;
 
 /// The space between two sheets, as a share of a sheet's height.
@@ -94,10 +95,4 @@ pub fn svg_text(drawings: &SheetDrawings, units: Units) -> String {
     }
     s.push_str("</svg>\n");
     s
-}
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }

@@ -6,5 +6,5 @@ mod panel;
 mod tables;
 
 pub use layout::{lay_out, Layout, Placed, Sheet};
-pub use panel::{corner_deg, side, unroll, EndCut, Panel, Point};
+pub use panel::{side, unroll, EndCut, Panel, Point};
 pub use tables::{bill_of_materials, node_rows, wall_rows, Bom, NodeRow, WallRow};

@@ -146,20 +146,20 @@ pub fn side(a: Point, b: Point) -> f64 {
     (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
-/// The angle (degrees) at corner `p` between the sides to `q` and `r`.
-pub fn corner_deg(p: Point, q: Point, r: Point) -> f64 {
-    let u = [q[0] - p[0], q[1] - p[1]];
-    let v = [r[0] - p[0], r[1] - p[1]];
-    (u[0] * v[1] - u[1] * v[0])
-        .abs()
-        .atan2(u[0] * v[0] + u[1] * v[1])
-        .to_degrees()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::generate::upright_hex_disk;
+
+    /// The angle (degrees) at corner `p` between the sides to `q` and `r`.
+    fn corner_deg(p: Point, q: Point, r: Point) -> f64 {
+        let u = [q[0] - p[0], q[1] - p[1]];
+        let v = [r[0] - p[0], r[1] - p[1]];
+        (u[0] * v[1] - u[1] * v[0])
+            .abs()
+            .atan2(u[0] * v[0] + u[1] * v[1])
+            .to_degrees()
+    }
 
     fn angle3(p: Vec3, q: Vec3, r: Vec3) -> f64 {
         let (u, v) = (q - p, r - p);

@@ -12,7 +12,7 @@ mod walls;
 pub use colormap::color;
 pub use legend::Ramp;
 pub use measure::WallMeasure;
-pub use scene::{Scene, Shape, TextStyle};
+pub use scene::{escape, Scene, Shape, TextStyle};
 pub use spherical::spherical_scene;
 pub use view::{Camera, View};
 pub use walls::{walls_scene, Coloring};
