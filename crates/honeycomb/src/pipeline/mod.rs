@@ -583,7 +583,8 @@ fn across_or_none(
     let mut repair_iterations = 0;
     // A few steps from where the vertices stand move them a little: they do not turn a
     // mirrored node back over, whose walls would have to pass through each other.
-    let repaired = if across.measures.omega_max_deg >= MIRRORED_NODE_DEG {
+    let mirrored = across.measures.omega_max_deg >= MIRRORED_NODE_DEG;
+    let repaired = if mirrored {
         None
     } else {
         repair(&across, surface, model_surface, options, &mut |info| {
@@ -618,7 +619,7 @@ fn across_or_none(
             solved.notes.append(&mut notes);
             let honeycomb = solved.report.honeycomb.then_some(solved);
             Ok(Err(NotClean {
-                why: if repair_iterations == 0 {
+                why: if mirrored {
                     format!("{why}, which a repair does not turn back")
                 } else {
                     format!("{why}, and a repair did not mend them")
