@@ -4,7 +4,7 @@
 
 use honeycomb::generate::{design_surface, Shape};
 use honeycomb::mesh::{read_mesh, validate_base_mesh, PolyMesh};
-use honeycomb::pipeline::{pipeline, PipelineOptions, Pipelined, Walls};
+use honeycomb::{pipeline, Outcome, PipelineOptions, Progress, Surface, Walls};
 use honeycomb::{Error, Result};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -181,8 +181,10 @@ fn bench_one(name: &str, source: &Source, cells: usize, walls: Walls) -> Row {
         return row("skipped", Some(reason), None);
     }
     let mut options = PipelineOptions::new(cells);
-    options.walls = walls;
-    let made = match pipeline(&surface, &options, &mut |_| {}) {
+    options.options.walls = walls;
+    let made = match Surface::new(surface)
+        .and_then(|surface| pipeline(&surface, &options, &mut Progress::silent()))
+    {
         Ok(made) => made,
         Err(e) => return row("refused", Some(e.to_string()), None),
     };
@@ -195,7 +197,7 @@ fn bench_one(name: &str, source: &Source, cells: usize, walls: Walls) -> Row {
     row(status, None, Some(figures(&made, seconds)))
 }
 
-fn figures(made: &Pipelined, seconds: f64) -> Figures {
+fn figures(made: &Outcome, seconds: f64) -> Figures {
     let m = &made.measures;
     Figures {
         cells: made.report.faces,
@@ -210,7 +212,7 @@ fn figures(made: &Pipelined, seconds: f64) -> Figures {
         parallel_mean_deg: m.parallel_baseline_deg.mean,
         parallel_p95_deg: m.parallel_baseline_deg.p95,
         edge_length_cv: m.edge_length_cv,
-        interior_hexagon_share: interior_hexagon_share(&made.optimized.honeycomb.base),
+        interior_hexagon_share: interior_hexagon_share(&made.honeycomb.base),
         walls: made.report.walls,
     }
 }

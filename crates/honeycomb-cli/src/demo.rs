@@ -1,11 +1,11 @@
 //! `honeycomb demo`: the first success of a new user, no input file needed.
 
-use crate::optimize::{optimize_and_write, solve_options, SolveArgs};
+use crate::optimize::{optimize_and_write, SolveArgs};
 use honeycomb::export::write_json;
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::limits::check_generated_vertices;
 use honeycomb::mesh::write_mesh;
-use honeycomb::{Error, Result};
+use honeycomb::{BaseMesh, Error, Result, Surface};
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -31,8 +31,9 @@ pub fn run(args: Args) -> Result<()> {
         ));
     }
     check_generated_vertices("--vertices", args.vertices)?;
+    args.opts.options()?;
     let (base, surface) = lifted_hex_patch(args.shape, args.vertices);
-    let prepared = solve_options(&args.opts, &base, Some(&surface))?;
+    let options = args.opts.options_for(&BaseMesh::from_mesh(base.clone())?)?;
     // The inputs too, so the result can be reproduced with `honeycomb optimize`.
     let inputs = |dir: &Path| {
         write_mesh(&dir.join("input_base.obj"), &base)?;
@@ -43,10 +44,10 @@ pub fn run(args: Args) -> Result<()> {
         )
     };
     optimize_and_write(
-        &base,
-        Some(&surface),
+        &BaseMesh::from_mesh(base.clone())?,
+        &Surface::new(surface.clone())?,
         &args.opts,
-        prepared,
+        &options,
         &args.output,
         &[],
         inputs,

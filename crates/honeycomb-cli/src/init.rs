@@ -1,18 +1,16 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs, LENGTH_FLAGS};
+use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs};
 use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
-    init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, Initialized, Method,
+    init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, InitReport, Initialized,
+    Method,
 };
 use honeycomb::limits::check_solve_cells;
-use honeycomb::mesh::{OutputDir, Outputs, PolyMesh};
-use honeycomb::pipeline::{pipeline, PipelineOptions, Step};
-use honeycomb::reciprocal::AcrossOptions;
-use honeycomb::{Error, Result};
+use honeycomb::mesh::{write_mesh, OutputDir, Outputs, PolyMesh};
+use honeycomb::{pipeline, Error, PipelineOptions, Progress, Result, Step, Surface};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// How the hex mesh is made (shared by `init` and `pipeline`).
 #[derive(clap::Args, Clone)]
@@ -127,11 +125,10 @@ pub fn run(args: Args) -> Result<()> {
         stage_json(&mut outputs, path, &made.report)?;
     }
     outputs.commit()?;
-    print_report(&made, output, &args.output)
+    print_init_report(&made.report, output, &args.output)
 }
 
-fn print_report(made: &Initialized, output: Output, written: &Path) -> Result<()> {
-    let r = &made.report;
+fn print_init_report(r: &InitReport, output: Output, written: &Path) -> Result<()> {
     match output {
         Output::Json => println!(
             "{}",
@@ -189,9 +186,6 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
                 .into(),
         ));
     }
-    let init = args.init.options()?;
-    let optimize = args.opts.options()?;
-    let walls = args.opts.walls()?;
     if args.opts.light.is_some() {
         return Err(Error::Parameter(
             "--light prescribes axes from the base mesh's vertices, and pipeline makes its own \
@@ -199,73 +193,52 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
                 .into(),
         ));
     }
+    let init = args.init.options()?;
+    let options = PipelineOptions {
+        init,
+        init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,
+        options: args.opts.options()?,
+    };
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
-    check_solve_cells(&init, &surface).map_err(|e| name_file(&args.surface, e))?;
+    check_solve_cells(&options.init, &surface).map_err(|e| name_file(&args.surface, e))?;
+    let surface = Surface::new(surface).map_err(|e| name_file(&args.surface, e))?;
     let strokes = Path::new(&args.init.align);
     let mut inputs = vec![args.surface.as_path()];
     if strokes.is_file() {
         inputs.push(strokes);
     }
     let out = OutputDir::begin(&args.output, &inputs)?;
-    let options = PipelineOptions {
-        init,
-        init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,
-        walls,
-        optimize,
-        // The second try only when the fairness is not the user's choice.
-        second_try: args.opts.w_fair.is_none(),
-        across: AcrossOptions::default(),
-        length_labels: LENGTH_FLAGS,
-    };
-    let mut bar = IterationBar::new(output, options.optimize.solver.max_iterations);
+    let mut bar = IterationBar::new(output, options.options.max_iterations());
     let spinner = std::cell::RefCell::new(None::<Spinner>);
-    let start = Instant::now();
-    let result = pipeline(&surface, &options, &mut |step| match step {
-        Step::Init => *spinner.borrow_mut() = Some(Spinner::new(output, "making the hex mesh")),
-        step => {
-            if let Some(s) = spinner.borrow_mut().take() {
-                s.finish();
+    let result = pipeline(
+        &surface,
+        &options,
+        &mut Progress::new(|step| match step {
+            Step::Init => *spinner.borrow_mut() = Some(Spinner::new(output, "making the hex mesh")),
+            step => {
+                if let Some(s) = spinner.borrow_mut().take() {
+                    s.finish();
+                }
+                bar.step(step)
             }
-            bar.step(step)
-        }
-    });
+        }),
+    );
     if let Some(s) = spinner.borrow_mut().take() {
         s.finish();
     }
     bar.finish();
-    let made = match result {
-        Ok(made) => made,
-        Err(e) => return Err(name_file(&args.surface, e)),
-    };
-    let mut report = made.report;
-    report.seconds = start.elapsed().as_secs_f64();
-    let mut notes = made.notes;
-    notes.extend(out.note(verdict(&report)));
-    report.notes = notes.clone();
-    let dir = &out.finish(verdict(&report), |dir| {
-        let mut outputs = Outputs::new();
-        // The mesh the kept solve started from, so that `optimize` repeats it.
-        outputs.mesh(&dir.join("initial.obj"), &made.base)?;
-        outputs.mesh(&dir.join("surface.obj"), &surface)?;
-        stage_json(
-            &mut outputs,
-            &dir.join("init.json"),
-            &made.initialized.report,
-        )?;
-        outputs.commit()?;
-        honeycomb::export::write_structure(dir, &made.optimized.honeycomb, &report)
+    let mut outcome = result.map_err(|e| name_file(&args.surface, e))?;
+    outcome.report.notes.extend(out.note(verdict(&outcome)));
+    let dir = &out.finish(verdict(&outcome), |dir| {
+        write_mesh(&dir.join("surface.obj"), surface.source_mesh())?;
+        outcome.write(dir)
     })?;
     if output == Output::Human {
-        print_report(&made.initialized, output, &dir.join("initial.obj"))?;
+        if let Some(init) = &outcome.initialized {
+            print_init_report(init, output, &dir.join("initial.obj"))?;
+        }
     }
-    print_notes(&notes, output);
-    finish(
-        &report,
-        &made.optimized,
-        dir,
-        output,
-        args.opts.cell_points,
-        0,
-    )
+    print_notes(&outcome.report.notes, output);
+    finish(&outcome, dir, output, args.opts.cell_points, 0)
 }

@@ -68,8 +68,26 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            eprintln!("error: {}", named_by_flag(e));
             ExitCode::FAILURE
         }
+    }
+}
+
+/// The library names an option by its field (`w_fair`); a user typed its flag (`--w-fair`).
+fn named_by_flag(e: honeycomb::Error) -> honeycomb::Error {
+    match e {
+        honeycomb::Error::Option {
+            field,
+            value,
+            expected,
+        } => {
+            let flag = match (field, value.as_str()) {
+                ("wall_normals", "cell_points") => "--cell-points".to_string(),
+                _ => format!("--{}", field.replace('_', "-")),
+            };
+            honeycomb::Error::Parameter(format!("{flag} {value}: {expected}"))
+        }
+        e => e,
     }
 }

@@ -1,25 +1,20 @@
 //! `honeycomb optimize BASE [--surface S] ... -o DIR`
 
 use crate::progress::{IterationBar, Output};
-use honeycomb::analysis::{extruded_along_normals, read_directions, shading_report};
-use honeycomb::error::{rounded, short_number};
+use honeycomb::analysis::read_directions;
+use honeycomb::error::rounded;
 use honeycomb::geometry::{parse_direction, read_axes};
 use honeycomb::mesh::{
-    check_base_near_surface, nonconvex_faces, read_mesh, validate_base_mesh, validate_surface_mesh,
-    OutputDir, PolyMesh, Verdict,
+    check_base_near_surface, nonconvex_faces, read_mesh, OutputDir, PolyMesh, Verdict,
 };
-use honeycomb::optimize::{
-    optimize, shading_axes, unit_light, AxesOptions, OptimizeOptions, Optimized, ParallelOptions,
-    QuadOptions, QuadPattern, WallNormals, Weights,
-};
-use honeycomb::pipeline::{solve_base, Walls};
+use honeycomb::optimize::{WallNormals, Weights};
 use honeycomb::report::Report;
 use honeycomb::solve::SolverOptions;
-use honeycomb::structure::{measure, thickest_uncrossed};
-use honeycomb::surface::Surface;
-use honeycomb::{Error, Result, Vec3};
+use honeycomb::structure::QuadPattern;
+use honeycomb::{
+    BaseMesh, Error, Options, Outcome, Progress, Result, Surface, Variant, Vec3, Walls,
+};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -179,16 +174,9 @@ impl SolveArgs {
             .map_err(|m: String| Error::Parameter(format!("--walls {m}")))
     }
 
-    /// The options that do not depend on the input meshes, checked.
-    pub fn options(&self) -> Result<OptimizeOptions> {
-        let iterations = self
-            .iterations
-            .unwrap_or(if self.light.is_some() { 20 } else { 10 });
-        if iterations == 0 || iterations > 10_000 {
-            return Err(Error::Parameter(format!(
-                "--iterations {iterations}: expected 1 to 10000"
-            )));
-        }
+    /// The library's options from the flags, checked; `--axes` is read by [`Self::options_for`]
+    /// once the base mesh is known.
+    pub fn options(&self) -> Result<Options> {
         // Checked here rather than by clap, whose message spans several lines.
         let quads = self.quads.is_some();
         for (given, flag, needs, present) in [
@@ -229,164 +217,90 @@ impl SolveArgs {
                 self.quad_direction.is_some(),
                 "--quad-direction",
                 "--quads",
-                self.quads.is_some(),
+                quads,
             ),
         ] {
             if given && !present {
                 return Err(Error::Parameter(format!("{flag} needs {needs}")));
             }
         }
-        if let Some(light) = self.light {
-            unit_light(light).map_err(|_| {
-                Error::Parameter(format!(
-                    "--light {}: expected a non-zero direction",
-                    honeycomb::error::short_vector(light)
-                ))
-            })?;
-        }
-        if let Some(t) = self.thickness {
-            if !t.is_finite() || t <= 0.0 {
-                return Err(Error::Parameter(format!(
-                    "--thickness {}: expected a positive length in model units",
-                    short_number(t)
-                )));
-            }
-        }
-        if let Some(l) = self.min_edge {
-            if !l.is_finite() || l <= 0.0 {
-                return Err(Error::Parameter(format!(
-                    "--min-edge {}: expected a positive length in model units",
-                    short_number(l)
-                )));
-            }
-        }
-        let variant = self.is_variant();
-        self.walls()?;
-        if self.cell_points && variant {
+        if self.cell_points && self.is_variant() {
             return Err(Error::Parameter(
                 "--cell-points: only for the plain honeycomb (not with --parallel, --quads, \
                  --axes or --light)"
                     .into(),
             ));
         }
-        // Below 1e-12 the regularization is lost in roundoff against unit weights.
-        if !self.eps.is_finite() || !(1e-12..=1e3).contains(&self.eps) {
-            return Err(Error::Parameter(format!(
-                "--eps {}: expected a number from 1e-12 to 1e3, typically 1e-3",
-                short_number(self.eps)
-            )));
-        }
-        let weights = Weights {
-            angle: self.w_angle,
-            consistency: self.w_cons,
-            normalization: self.w_norm,
-            closeness: self.w_close,
-            boundary: self.w_boundary,
-            fairness: self.w_fair.unwrap_or(Weights::default().fairness),
-            guide: self.w_guide,
-        };
-        // Named by flag: the user typed flags, not the library's weight names.
-        weights.validate_as([
-            "--w-angle",
-            "--w-cons",
-            "--w-norm",
-            "--w-close",
-            "--w-boundary",
-            "--w-fair",
-            "--w-guide",
-        ])?;
-        let quads = match self.quads {
-            Some(pattern) => {
-                let defaults = QuadOptions::default();
-                let quads = QuadOptions {
-                    pattern,
-                    direction: self.quad_direction,
-                    w_cons_faces: self.w_cons_faces.unwrap_or(defaults.w_cons_faces),
-                    w_fair_zigzag: self.w_fair_zig.unwrap_or(defaults.w_fair_zigzag),
-                    w_fair_straight: self.w_fair_str.unwrap_or(defaults.w_fair_straight),
-                };
-                quads.validate().map_err(|e| match e {
-                    Error::Parameter(m) => Error::Parameter(format!("--quads: {m}")),
-                    e => e,
-                })?;
-                Some(quads)
+        let variant = if self.parallel {
+            Variant::Parallel {
+                depth: self.depth,
+                w_parallel: self.w_parallel,
+                w_depth: self.w_depth,
             }
-            None => None,
+        } else if let Some(pattern) = self.quads {
+            Variant::Quads {
+                pattern,
+                quad_direction: self.quad_direction,
+                w_cons_faces: self.w_cons_faces,
+                w_fair_zig: self.w_fair_zig,
+                w_fair_str: self.w_fair_str,
+            }
+        } else if let Some(light) = self.light {
+            Variant::Shading {
+                light,
+                sun_path: match &self.sun_path {
+                    Some(path) => read_directions(path)?,
+                    None => Vec::new(),
+                },
+                w_axes: self.w_axes,
+            }
+        } else if self.axes.is_some() {
+            Variant::Axes {
+                axes: Vec::new(),
+                w_axes: self.w_axes,
+            }
+        } else {
+            Variant::Plain
         };
-        let parallel = self.parallel.then_some(ParallelOptions {
-            depth: self.depth,
-            weight: self.w_parallel.unwrap_or(ParallelOptions::default().weight),
-            depth_weight: self
-                .w_depth
-                .unwrap_or(ParallelOptions::default().depth_weight),
-        });
-        if let Some(p) = &parallel {
-            p.validate_as(["--depth", "--w-parallel", "--w-depth"])?;
-        }
-        Ok(OptimizeOptions {
-            weights,
-            quads,
-            solver: SolverOptions {
-                max_iterations: iterations,
-                eps: self.eps,
-                ..SolverOptions::default()
-            },
+        let options = Options {
+            walls: self.walls()?,
+            variant,
+            iterations: self.iterations,
+            eps: self.eps,
             thickness: self.thickness,
             min_edge: self.min_edge,
-            parallel,
+            w_angle: self.w_angle,
+            w_cons: self.w_cons,
+            w_norm: self.w_norm,
+            w_close: self.w_close,
+            w_boundary: self.w_boundary,
+            w_fair: self.w_fair,
+            w_guide: self.w_guide,
             wall_normals: match (self.cell_points, self.per_edge_normals) {
                 (true, _) => WallNormals::CellPoints,
                 (_, true) => WallNormals::PerEdge,
                 _ => WallNormals::Auto,
             },
-            ..OptimizeOptions::default()
-        })
+        };
+        options.validate()?;
+        Ok(options)
     }
 
-    /// Completes `options` with what depends on the inputs: prescribed axes (read from --axes or
-    /// built from --light on S) and the minimum edge length that shading needs.
-    fn add_axes(
-        &self,
-        options: &mut OptimizeOptions,
-        base: &PolyMesh,
-        surface: Option<&PolyMesh>,
-    ) -> Result<()> {
-        let targets = match (&self.axes, self.light) {
-            (Some(path), _) => read_axes(path, base.vertices.len())?,
-            (None, Some(light)) => {
-                let s = Surface::from_mesh(surface.unwrap_or(base))?;
-                // Walls tilted far from the normals collapse boundary edges without it.
-                options
-                    .min_edge
-                    .get_or_insert(0.3 * base.mean_edge_length());
-                shading_axes(&s, &base.vertices, light)?
-            }
-            (None, None) => return Ok(()),
-        };
-        let default = if self.light.is_some() {
-            AxesOptions::SHADING_WEIGHT
-        } else {
-            AxesOptions::DEFAULT_WEIGHT
-        };
-        let axes = AxesOptions {
-            targets,
-            weight: self.w_axes.unwrap_or(default),
-        };
-        axes.validate(base.vertices.len())
-            .map_err(|e| match (&self.axes, e) {
-                (Some(path), Error::Parameter(m)) => {
-                    Error::Parameter(format!("--axes {}: {m}", path.display()))
+    /// [`Self::options`] with the axes of `--axes` read for `base`.
+    pub fn options_for(&self, base: &BaseMesh) -> Result<Options> {
+        let mut options = self.options()?;
+        if let (Some(path), Variant::Axes { axes, .. }) = (&self.axes, &mut options.variant) {
+            *axes = read_axes(path, base.vertices().len())?;
+            options.validate().map_err(|e| match e {
+                Error::Option { value, expected, .. } => {
+                    Error::Parameter(format!("--axes {}: {value}: {expected}", path.display()))
                 }
-                (_, e) => e,
+                e => e,
             })?;
-        options.axes = Some(axes);
-        Ok(())
+        }
+        Ok(options)
     }
 }
-
-/// The flags of the thickness, the minimum edge length and the depth, as the library's
-/// checks of them name them ([`OptimizeOptions::validate_as`]).
-pub const LENGTH_FLAGS: [&str; 3] = ["--thickness", "--min-edge", "--depth"];
 
 /// Reads a mesh, passing the reader's warnings to stderr.
 pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
@@ -399,121 +313,52 @@ pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
     Ok(loaded.mesh)
 }
 
-/// What a solve of one base mesh runs with: its options, every one checked (against the mesh
-/// too), and the sun path (`--sun-path`, empty without it).
-pub struct Prepared {
-    options: OptimizeOptions,
-    sun_path: Vec<Vec3>,
-}
-
-/// The solve of `base` prepared from the arguments: done once, before anything is written.
-pub fn solve_options(
-    args: &SolveArgs,
-    base: &PolyMesh,
-    surface: Option<&PolyMesh>,
-) -> Result<Prepared> {
-    let mut options = args.options()?;
-    args.add_axes(&mut options, base, surface)?;
-    options.validate_as(base, LENGTH_FLAGS)?;
-    let sun_path = match &args.sun_path {
-        Some(path) => read_directions(path)?,
-        None => Vec::new(),
-    };
-    Ok(Prepared { options, sun_path })
-}
-
 /// Optimizes a designer's base mesh (`optimize`, `demo`), writes the structure directory (with
 /// what `inputs` writes into it; it may hold none of `input_files`) and prints the result.
 pub fn optimize_and_write(
-    base: &PolyMesh,
-    surface: Option<&PolyMesh>,
+    base: &BaseMesh,
+    surface: &Surface,
     args: &SolveArgs,
-    prepared: Prepared,
+    options: &Options,
     dir: &Path,
     input_files: &[&Path],
     inputs: impl FnOnce(&Path) -> Result<()>,
 ) -> Result<Report> {
     // Before the solve, so that an unusable -o fails at once, not after a long run.
     let out = OutputDir::begin(dir, input_files)?;
-    solve_and_write(base, surface, args, out, prepared, inputs)
-}
-
-/// `optimize_and_write` once the options are checked and the output directory begun.
-fn solve_and_write(
-    base: &PolyMesh,
-    surface: Option<&PolyMesh>,
-    args: &SolveArgs,
-    out: OutputDir,
-    prepared: Prepared,
-    inputs: impl FnOnce(&Path) -> Result<()>,
-) -> Result<Report> {
     let output = args.output();
-    let nonconvex = nonconvex_faces(base);
+    let nonconvex = nonconvex_faces(base.mesh());
     if !nonconvex.is_empty() {
         eprintln!(
             "warning: {} of {} cells of the base mesh are not convex (first: cell {}); \
              the optimization may fold or collapse them",
             nonconvex.len(),
-            base.faces.len(),
+            base.cells().len(),
             nonconvex[0]
         );
     }
-    let Prepared { options, sun_path } = prepared;
-    let mut bar = IterationBar::new(output, options.solver.max_iterations);
-    let start = Instant::now();
-    let model_surface = Surface::from_mesh(surface.unwrap_or(base))?;
-    let (optimized, mut report, mut notes) = if args.is_variant() {
-        let result = optimize(base, surface, &options, &mut |info| bar.update(info));
-        bar.finish();
-        let optimized = result?;
-        let measures = measure(&optimized.honeycomb, &model_surface);
-        let report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
-        (optimized, report, Vec::new())
-    } else {
-        let result = solve_base(base, surface, args.walls()?, &options, &mut |step| {
-            bar.step(step)
-        });
-        bar.finish();
-        let solved = result?;
-        (solved.optimized, solved.report, solved.notes)
-    };
-    report.seconds = start.elapsed().as_secs_f64();
-    if let Some(light) = args.light {
-        let before = extruded_along_normals(
-            base,
-            &optimized.connectivity,
-            &model_surface,
-            optimized.honeycomb.thickness,
-        );
-        report.shading = Some(shading_report(
-            &before,
-            &optimized.honeycomb,
-            light,
-            &sun_path,
-        ));
-    }
-    notes.extend(out.note(verdict(&report)));
-    report.notes = notes.clone();
-    let quads: Vec<(&str, &PolyMesh)> = optimized.quads.iter().map(|q| ("quads.obj", q)).collect();
-    let dir = out.finish(verdict(&report), |dir| {
-        honeycomb::export::write_structure_with(dir, &optimized.honeycomb, &quads, &report)?;
+    let mut bar = IterationBar::new(output, options.max_iterations());
+    let result = honeycomb::optimize(
+        base,
+        surface,
+        options,
+        &mut Progress::new(|step| bar.step(step)),
+    );
+    bar.finish();
+    let mut outcome = result?;
+    outcome.report.notes.extend(out.note(verdict(&outcome)));
+    let dir = out.finish(verdict(&outcome), |dir| {
+        outcome.write(dir)?;
         inputs(dir)
     })?;
-    print_notes(&notes, output);
-    finish(
-        &report,
-        &optimized,
-        &dir,
-        output,
-        args.cell_points,
-        nonconvex.len(),
-    )?;
-    Ok(report)
+    print_notes(&outcome.report.notes, output);
+    finish(&outcome, &dir, output, args.cell_points, nonconvex.len())?;
+    Ok(outcome.report)
 }
 
 /// A honeycomb's outputs take DIR's place; any other go to DIR.failed for inspection.
-pub fn verdict(report: &Report) -> Verdict {
-    if report.honeycomb {
+pub fn verdict(outcome: &Outcome) -> Verdict {
+    if outcome.is_honeycomb() {
         Verdict::Passed
     } else {
         Verdict::Failed
@@ -532,13 +377,13 @@ pub fn print_notes(notes: &[String], output: Output) {
 /// Prints a written result (its Figure 16 row and how the walls stand, or the JSON report) and
 /// fails if it is no honeycomb.
 pub fn finish(
-    report: &Report,
-    optimized: &Optimized,
+    outcome: &Outcome,
     dir: &Path,
     output: Output,
     cell_points_asked: bool,
     nonconvex_cells: usize,
 ) -> Result<()> {
+    let report = &outcome.report;
     match output {
         Output::Json => println!(
             "{}",
@@ -575,73 +420,54 @@ pub fn finish(
         }
         Output::Quiet => {}
     }
-    if !report.honeycomb {
-        return Err(Error::Solver(format!(
-            "the result is not a honeycomb after {} iterations: omega_max {:.3} deg, \
-             delta_max {:.1e} (tolerance {} deg, {:.0e}); the outputs in {} are for inspection. \
-             More --iterations or a larger --eps may help{}{}{}",
-            report.iterations,
-            report.measures.omega_max_deg,
-            report.measures.delta_max,
-            Report::OMEGA_TOLERANCE_DEG,
-            Report::DELTA_TOLERANCE,
-            dir.display(),
-            // Chosen, not asked for, and not already followed by a solve per edge (pipeline):
-            // the other formulation takes another path.
-            if report.wall_normals == WallNormals::CellPoints
-                && report.per_edge_fallback.is_none()
-                && !cell_points_asked
-            {
-                ", and so may --per-edge-normals"
-            } else {
-                ""
-            },
-            if nonconvex_cells == 0 {
-                String::new()
-            } else {
-                format!("; {nonconvex_cells} cells of the base mesh are not convex")
-            },
-            match report.measures.nonconvex_walls {
-                0 => String::new(),
-                n => {
-                    let limit = thickest_uncrossed(&optimized.honeycomb);
-                    format!(
-                        "; {n} wall quads are not convex at thickness {} (the node axes at \
-                         their ends lean together or apart across the wall){}",
-                        rounded(report.thickness, 4),
-                        if limit < report.thickness {
-                            format!(
-                                ": --thickness below {} uncrosses those leaning together",
-                                rounded(limit, 4)
-                            )
-                        } else {
-                            String::new()
-                        }
-                    )
-                }
-            }
-        )));
-    }
-    Ok(())
+    let Some(why) = &outcome.verdict.why else {
+        return Ok(());
+    };
+    Err(Error::Solver(format!(
+        "the result is {why}; the outputs in {} are for inspection. More --iterations or a \
+         larger --eps may help{}{}{}",
+        dir.display(),
+        // Chosen, not asked for, and not already followed by a solve per edge (pipeline):
+        // the other formulation takes another path.
+        if report.wall_normals == WallNormals::CellPoints
+            && report.per_edge_fallback.is_none()
+            && !cell_points_asked
+        {
+            ", and so may --per-edge-normals"
+        } else {
+            ""
+        },
+        if nonconvex_cells == 0 {
+            String::new()
+        } else {
+            format!("; {nonconvex_cells} cells of the base mesh are not convex")
+        },
+        match outcome.verdict.uncrossed_below {
+            Some(limit) => format!(
+                "; --thickness below {} uncrosses the wall quads whose axes lean together",
+                rounded(limit, 4)
+            ),
+            None => String::new(),
+        }
+    )))
 }
 
 pub fn run(args: Args) -> Result<()> {
     // Parameters first: a typo should not wait for a large mesh to load.
     args.opts.options()?;
     let output = args.opts.output();
-    let base = load(&args.base, output)?;
-    // Validated here too (optimize does it again), so that the message names the file.
-    validate_base_mesh(&base).map_err(|e| name_file(&args.base, e))?;
+    let base = BaseMesh::from_mesh(load(&args.base, output)?).map_err(|e| name_file(&args.base, e))?;
     let surface = match &args.opts.surface {
         Some(path) => {
-            let surface = load(path, output)?;
-            validate_surface_mesh(&surface).map_err(|e| name_file(path, e))?;
-            check_base_near_surface(&base, &surface).map_err(|e| name_file(path, e))?;
-            Some(surface)
+            let surface = Surface::new(load(path, output)?).map_err(|e| name_file(path, e))?;
+            // A bounding-box check (optimize makes it too): here the message can name the file.
+            check_base_near_surface(base.mesh(), surface.source_mesh())
+                .map_err(|e| name_file(path, e))?;
+            surface
         }
-        None => None,
+        None => Surface::of_base(&base)?,
     };
-    let prepared = solve_options(&args.opts, &base, surface.as_ref())?;
+    let options = args.opts.options_for(&base)?;
     let opts = &args.opts;
     let given = [
         Some(&args.base),
@@ -652,9 +478,9 @@ pub fn run(args: Args) -> Result<()> {
     let input_files: Vec<&Path> = given.into_iter().flatten().map(|p| p.as_path()).collect();
     optimize_and_write(
         &base,
-        surface.as_ref(),
+        &surface,
         &args.opts,
-        prepared,
+        &options,
         &args.output,
         &input_files,
         |_| Ok(()),
@@ -664,9 +490,5 @@ pub fn run(args: Args) -> Result<()> {
 
 /// Prefixes an error about a mesh with the file it is about.
 pub fn name_file(path: &Path, e: Error) -> Error {
-    match e {
-        Error::Mesh(m) => Error::Mesh(format!("{}: {m}", path.display())),
-        Error::Unsuited(m) => Error::Unsuited(format!("{}: {m}", path.display())),
-        e => e,
-    }
+    e.about_file(path)
 }

@@ -73,7 +73,7 @@ pub fn run(args: Args) -> Result<()> {
     };
     let surface_input = args.input.as_ref().is_some_and(|p| p.is_file());
     if let Some(t) = args.thickness {
-        honeycomb::error::check_positive_length("--thickness", t)?;
+        honeycomb::error::check_positive_length("thickness", t)?;
         if args.input.as_ref().is_some_and(|p| p.is_dir()) {
             return Err(Error::Parameter(format!(
                 "--thickness {}: a structure directory is edited at the thickness it was made \
@@ -115,13 +115,7 @@ pub fn run(args: Args) -> Result<()> {
     let output = Output::from_flags(args.quiet, args.json);
     // Making the base mesh and the first solve can take seconds on a large surface.
     let spinner = Spinner::new(output, "making the honeycomb to edit");
-    let server = start(&source, options).map_err(|e| match e {
-        // The library's bound on the thickness, which the user gave as --thickness.
-        Error::Parameter(m) if args.thickness.is_some() && m.starts_with("thickness ") => {
-            Error::Parameter(format!("--{m}"))
-        }
-        e => e,
-    });
+    let server = start(&source, options);
     spinner.finish();
     let server = match &args.input {
         Some(path) => server.map_err(|e| name_file(path, e))?,

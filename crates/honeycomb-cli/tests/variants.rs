@@ -233,7 +233,7 @@ fn nonsense_variant_values_are_rejected() {
     demo_fails(
         "quad_weight",
         &["--quads", "zigzag", "--w-cons-faces", "0"],
-        &["w_cons_faces", "0"],
+        &["--w-cons-faces 0", "weight above 0"],
     );
     demo_fails(
         "sun_alone",

@@ -7,7 +7,7 @@ use honeycomb::init::{CellSize, InitOptions};
 use honeycomb::interactive::Workspace;
 use honeycomb::limits::{check_solve_cells, check_solve_vertices};
 use honeycomb::mesh::{read_mesh, PolyMesh};
-use honeycomb::pipeline::{pipeline, PipelineOptions, Walls};
+use honeycomb::{pipeline, PipelineOptions, Progress, Surface, Walls};
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
 
@@ -81,12 +81,13 @@ impl Source {
             Source::Surface { path, cells, walls } => {
                 let surface = read_mesh(path)?.mesh;
                 check_solve_cells(&InitOptions::new(CellSize::Cells(*cells)), &surface)?;
+                let surface = Surface::new(surface)?;
                 // As `honeycomb pipeline` makes it, so that editing starts from a honeycomb.
                 let mut options = PipelineOptions::new(*cells);
-                options.walls = *walls;
-                options.optimize.thickness = thickness;
-                let made = pipeline(&surface, &options, &mut |_| {})?;
-                if !made.report.honeycomb {
+                options.options.walls = *walls;
+                options.options.thickness = thickness;
+                let made = pipeline(&surface, &options, &mut Progress::silent())?;
+                if !made.is_honeycomb() {
                     let m = &made.measures;
                     return Err(Error::Solver(format!(
                         "the pipeline made no honeycomb on this surface (omega_max {} deg, \
@@ -96,8 +97,8 @@ impl Source {
                         honeycomb::error::rounded(m.delta_max, 3)
                     )));
                 }
-                let ws = Workspace::from_honeycomb(&made.optimized.honeycomb, Some(&surface))?;
-                Ok((ws, made.notes))
+                let ws = Workspace::from_honeycomb(&made.honeycomb, Some(surface.source_mesh()))?;
+                Ok((ws, made.report.notes))
             }
         }
     }

@@ -2,14 +2,14 @@
 //! files a fabricator cuts. `cargo run --release --example saddle` writes `saddle-honeycomb/`
 //! and `saddle-export/`.
 
-use honeycomb::export::{export, write_structure, ExportOptions, Model};
+use honeycomb::export::{export, ExportOptions, Model};
 use honeycomb::generate::{design_surface, Shape};
-use honeycomb::pipeline::{pipeline, PipelineOptions};
+use honeycomb::{pipeline, PipelineOptions, Progress, Surface};
 use std::path::Path;
 
 fn main() -> honeycomb::Result<()> {
-    let surface = design_surface(Shape::Saddle);
-    let made = pipeline(&surface, &PipelineOptions::new(750), &mut |_| {})?;
+    let surface = Surface::new(design_surface(Shape::Saddle))?;
+    let made = pipeline(&surface, &PipelineOptions::new(750), &mut Progress::silent())?;
     let m = &made.measures;
     println!(
         "{} cells: omega_max {:.1e} deg, delta_max {:.1e}, axis to normal {:.1} deg (parallel axes: {:.1})",
@@ -19,9 +19,8 @@ fn main() -> honeycomb::Result<()> {
         m.axis_normal_deg.mean,
         m.parallel_baseline_deg.mean
     );
-    let honeycomb = made.optimized.honeycomb;
-    write_structure(Path::new("saddle-honeycomb"), &honeycomb, &made.report)?;
-    let model = Model::new(honeycomb, Some(surface), Default::default())?;
+    made.save("saddle-honeycomb")?;
+    let model = Model::new(made.honeycomb, Some(surface.source_mesh().clone()), Default::default())?;
     let written = export(
         &model,
         &ExportOptions::default(),

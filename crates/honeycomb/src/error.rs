@@ -31,9 +31,42 @@ pub enum Error {
     /// The optimization could not proceed (e.g. a singular system).
     #[error("solver: {0}")]
     Solver(String),
+    /// The caller stopped the work ([`crate::Progress`]'s cancel handle); nothing was made.
+    #[error("cancelled")]
+    Cancelled,
+    /// An option of the library's front door outside its range: the field as named in
+    /// [`crate::Options`] or [`crate::PipelineOptions`], its value and what it should be. A
+    /// front names it its own way (the CLI by its flag).
+    #[error("invalid option {field} {value}: {expected}")]
+    Option {
+        field: &'static str,
+        value: String,
+        expected: String,
+    },
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
+
+impl Error {
+    /// The error with the file it is about in front, where the message is about a mesh's
+    /// content and does not name it yet.
+    pub fn about_file(self, path: &std::path::Path) -> Error {
+        match self {
+            Error::Mesh(m) => Error::Mesh(format!("{}: {m}", path.display())),
+            Error::Unsuited(m) => Error::Unsuited(format!("{}: {m}", path.display())),
+            e => e,
+        }
+    }
+
+    /// A field of the front door's options outside its range.
+    pub fn option(field: &'static str, value: impl std::fmt::Display, expected: impl Into<String>) -> Error {
+        Error::Option {
+            field,
+            value: value.to_string(),
+            expected: expected.into(),
+        }
+    }
+}
 
 /// `:12` for line 12; nothing for 0 (the whole file, or binary data).
 fn line_suffix(line: &usize) -> String {
@@ -107,12 +140,13 @@ fn coordinates(v: crate::Vec3, digits: usize, separator: &str) -> String {
 }
 
 /// `length`, which `label` names (a flag or a word), must be a finite positive length.
-pub fn check_positive_length(label: &str, length: f64) -> Result<()> {
+pub fn check_positive_length(field: &'static str, length: f64) -> Result<()> {
     if !length.is_finite() || length <= 0.0 {
-        return Err(Error::Parameter(format!(
-            "{label} {}: expected a positive length in model units",
-            rounded(length, 6)
-        )));
+        return Err(Error::option(
+            field,
+            rounded(length, 6),
+            "expected a positive length in model units",
+        ));
     }
     Ok(())
 }

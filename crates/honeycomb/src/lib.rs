@@ -7,6 +7,7 @@ pub mod analysis;
 pub mod constraints;
 pub mod edit;
 pub mod error;
+mod front;
 pub mod export;
 pub mod fabrication;
 pub mod generate;
@@ -26,4 +27,12 @@ pub mod structure;
 pub mod surface;
 
 pub use error::{Error, Result};
+pub use front::{
+    optimize, pipeline, BaseMesh, Options, Outcome, PipelineOptions, Progress, Step, Variant,
+    Verdict,
+};
 pub use geometry::Vec3;
+pub use pipeline::Walls;
+pub use solve::Cancel;
+pub use structure::{Honeycomb, Measures};
+pub use surface::Surface;

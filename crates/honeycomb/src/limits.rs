@@ -61,19 +61,24 @@ pub fn check_solve_vertices(option: &str, vertices: usize) -> Result<()> {
 /// [`crate::init::check_edge_length`]).
 pub fn check_solve_cells(init: &InitOptions, surface: &PolyMesh) -> Result<()> {
     crate::init::check_edge_length(surface, init)?;
-    let (option, cells) = match init.size {
-        CellSize::Cells(n) => (format!("--cells {n}"), n as f64),
+    let (field, value, cells) = match init.size {
+        CellSize::Cells(n) => ("cells", n.to_string(), n as f64),
         CellSize::EdgeLength(l) => (
-            format!("--edge-length {}", crate::error::rounded(l, 6)),
+            "edge_length",
+            crate::error::rounded(l, 6).to_string(),
             surface.area() / hexagon_area(1.0) / l / l,
         ),
     };
     if cells > MAX_SOLVE_CELLS as f64 {
-        return Err(Error::Parameter(format!(
-            "{option}: {} to solve; expected at most {MAX_SOLVE_CELLS} (a solve takes at \
-             most {MAX_SOLVE_VERTICES} vertices)",
-            crate::error::about(cells, "cells")
-        )));
+        return Err(Error::option(
+            field,
+            value,
+            format!(
+                "{} to solve; expected at most {MAX_SOLVE_CELLS} (a solve takes at most \
+                 {MAX_SOLVE_VERTICES} vertices)",
+                crate::error::about(cells, "cells")
+            ),
+        ));
     }
     Ok(())
 }
@@ -90,10 +95,14 @@ pub fn check_solve(base: &PolyMesh, iterations: usize) -> Result<()> {
     }
     let most = MAX_VERTEX_ITERATIONS / vertices.max(1);
     if iterations > most {
-        return Err(Error::Parameter(format!(
-            "--iterations {iterations}: on {vertices} vertices expected at most {most} \
-             ({MAX_VERTEX_ITERATIONS:e} vertex-iterations, about an hour at 140k vertices)"
-        )));
+        return Err(Error::option(
+            "iterations",
+            iterations,
+            format!(
+                "on {vertices} vertices expected at most {most} ({MAX_VERTEX_ITERATIONS:e} \
+                 vertex-iterations, about an hour at 140k vertices)"
+            ),
+        ));
     }
     Ok(())
 }
@@ -117,13 +126,13 @@ mod tests {
         let e = check_solve_cells(&sized(CellSize::EdgeLength(1e-3)), &square).unwrap_err();
         assert!(
             e.to_string()
-                .contains("--edge-length 0.001: about 384900 cells"),
+                .contains("edge_length 0.001: about 384900 cells"),
             "{e}"
         );
         let e = check_solve_cells(&sized(CellSize::Cells(1_000_000)), &square).unwrap_err();
         assert!(
             e.to_string()
-                .contains("--cells 1000000: about 1000000 cells"),
+                .contains("cells 1000000: about 1000000 cells"),
             "{e}"
         );
         check_solve_cells(&sized(CellSize::Cells(150_000)), &square).unwrap();
@@ -137,7 +146,7 @@ mod tests {
         let e = check_solve(&square, 30_000_000).unwrap_err();
         assert!(
             e.to_string()
-                .contains("--iterations 30000000: on 4 vertices expected at most 25000000"),
+                .contains("iterations 30000000: on 4 vertices expected at most 25000000"),
             "{e}"
         );
         check_solve(&square, 10_000).unwrap();

@@ -416,7 +416,7 @@ fn unusable_sizes_and_surfaces_are_errors() {
     let s = disk(1.0, 10, |_, _| 0.0);
     for edge in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         match field_hex_mesh(&s, edge, &[], true, 1) {
-            Err(Error::Parameter(m)) => assert!(m.contains("edge length"), "{m}"),
+            Err(Error::Option { field, .. }) => assert_eq!(field, "edge_length"),
             other => panic!("edge {edge}: {other:?}"),
         }
     }

@@ -5,7 +5,7 @@
 use honeycomb::export::{glb_bytes, Frame, Model, Units};
 use honeycomb::generate::{design_surface, Shape};
 use honeycomb::mesh::PolyMesh;
-use honeycomb::pipeline::{pipeline, PipelineOptions};
+use honeycomb::{pipeline, PipelineOptions, Progress, Surface};
 use honeycomb::structure::Honeycomb;
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -17,10 +17,11 @@ fn saddle() -> &'static (Honeycomb, PolyMesh) {
     static MADE: OnceLock<(Honeycomb, PolyMesh)> = OnceLock::new();
     MADE.get_or_init(|| {
         let surface = design_surface(Shape::Saddle);
-        let made = pipeline(&surface, &PipelineOptions::new(150), &mut |_| {})
+        let s = Surface::new(surface.clone()).unwrap();
+        let made = pipeline(&s, &PipelineOptions::new(150), &mut Progress::silent())
             .unwrap_or_else(|e| panic!("saddle: {e}"));
-        assert!(made.report.honeycomb, "saddle: {:?}", made.notes);
-        (made.optimized.honeycomb, surface)
+        assert!(made.is_honeycomb(), "saddle: {:?}", made.report.notes);
+        (made.honeycomb, surface)
     })
 }
 

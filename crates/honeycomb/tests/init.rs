@@ -251,7 +251,7 @@ fn unusable_surfaces_and_sizes_are_named() {
         CellSize::EdgeLength(-1.0),
     ] {
         let e = error(&s, &InitOptions { size, ..options(1) });
-        assert!(e.contains("--cells") || e.contains("--edge-length"), "{e}");
+        assert!(e.contains("cells") || e.contains("edge_length"), "{e}");
     }
     let e = error(
         &s,

@@ -7,16 +7,24 @@ use honeycomb::generate::{design_surface, Shape};
 use honeycomb::geometry::Vec3;
 use honeycomb::init::{init, CellSize, Flattener, InitOptions, Method};
 use honeycomb::mesh::{Connectivity, PolyMesh};
-use honeycomb::pipeline::{pipeline, PipelineOptions, Pipelined, Walls};
+use honeycomb::{pipeline, Outcome, PipelineOptions, Progress, Surface, Walls};
 use std::time::Instant;
 
 mod common;
 
 const SIZES: [usize; 3] = [750, 1500, 4000];
 
-fn run(surface: &PolyMesh, cells: usize) -> Pipelined {
-    pipeline(surface, &PipelineOptions::new(cells), &mut |_| {})
-        .unwrap_or_else(|e| panic!("{cells} cells: {e}"))
+fn run(surface: &PolyMesh, cells: usize) -> Outcome {
+    made(surface, &PipelineOptions::new(cells)).unwrap_or_else(|e| panic!("{cells} cells: {e}"))
+}
+
+/// The pipeline on a surface given as a mesh.
+fn made(surface: &PolyMesh, options: &PipelineOptions) -> honeycomb::Result<Outcome> {
+    pipeline(
+        &Surface::new(surface.clone())?,
+        options,
+        &mut Progress::silent(),
+    )
 }
 
 /// The share of hexagons among the cells with no vertex on the boundary.
@@ -32,11 +40,11 @@ fn interior_hexagon_share(mesh: &PolyMesh) -> f64 {
 }
 
 /// What every honeycomb across S must be, whatever the surface.
-fn assert_clean(made: &Pipelined, what: &str, cells: usize) {
+fn assert_clean(made: &Outcome, what: &str, cells: usize) {
     let m = &made.measures;
     let r = &made.report;
-    assert!(r.honeycomb, "{what}: {:?}", made.notes);
-    assert_eq!(r.walls, Walls::Across, "{what}: {:?}", made.notes);
+    assert!(r.honeycomb, "{what}: {:?}", made.report.notes);
+    assert_eq!(r.walls, Walls::Across, "{what}: {:?}", made.report.notes);
     assert!(
         m.omega_max_deg < 0.01,
         "{what}: omega_max {}",
@@ -54,7 +62,7 @@ fn assert_clean(made: &Pipelined, what: &str, cells: usize) {
         "{what}: edge cv {}",
         m.edge_length_cv
     );
-    let base = &made.optimized.honeycomb.base;
+    let base = &made.honeycomb.base;
     let share = interior_hexagon_share(base);
     assert!(share >= 0.97, "{what}: interior hexagons {share}");
     let off = (base.faces.len() as f64 / cells as f64 - 1.0).abs();
@@ -118,14 +126,12 @@ fn doubly_curved_surfaces_lean_less_than_parallel_axes() {
 #[test]
 fn uniform_walls_are_parallel() {
     let surface = design_surface(Shape::Dome);
-    let options = PipelineOptions {
-        walls: Walls::Uniform,
-        ..PipelineOptions::new(750)
-    };
-    let made = pipeline(&surface, &options, &mut |_| {}).unwrap();
+    let mut options = PipelineOptions::new(750);
+    options.options.walls = Walls::Uniform;
+    let made = made(&surface, &options).unwrap();
     assert!(made.report.honeycomb);
     assert_eq!(made.report.walls, Walls::Uniform);
-    let h = &made.optimized.honeycomb;
+    let h = &made.honeycomb;
     for &a in &h.axes {
         assert!(a.z.abs() > 1.0 - 1e-6, "{a:?}");
     }
@@ -159,7 +165,7 @@ fn a_band_around_a_hole_is_remeshed() {
     );
     let made = run(&band, 750);
     assert_clean(&made, "band", 750);
-    assert!(made.notes.iter().any(|n| n.contains("field-aligned")));
+    assert!(made.report.notes.iter().any(|n| n.contains("field-aligned")));
     assert!(made.measures.axis_normal_deg.mean < 1.0);
 }
 
@@ -169,7 +175,7 @@ fn a_band_around_a_hole_is_remeshed() {
 #[test]
 fn a_surface_too_curved_for_the_cells_is_refused_at_once() {
     let start = Instant::now();
-    let e = pipeline(&bumpy_ball(0.15), &PipelineOptions::new(1500), &mut |_| {})
+    let e = made(&bumpy_ball(0.15), &PipelineOptions::new(1500))
         .err()
         .expect("too curved");
     assert!(start.elapsed().as_secs_f64() < 5.0);
@@ -280,10 +286,10 @@ fn the_shared_roofs_become_honeycombs_in_one_piece() {
             made.measures.edge_length_cv
         );
         let m = &made.measures;
-        assert!(r.honeycomb, "{file}: {:?}", made.notes);
+        assert!(r.honeycomb, "{file}: {:?}", made.report.notes);
         assert!(m.omega_max_deg < 0.01, "{file}");
         assert!(m.delta_max < 1e-6, "{file}: delta {}", m.delta_max);
-        assert_eq!(r.walls, Walls::Across, "{file}: {:?}", made.notes);
+        assert_eq!(r.walls, Walls::Across, "{file}: {:?}", made.report.notes);
         assert!(m.closeness_max < 0.05, "{file}: {}", m.closeness_max);
         assert!(
             m.axis_normal_deg.mean <= 0.5 * m.parallel_baseline_deg.mean,
@@ -291,8 +297,8 @@ fn the_shared_roofs_become_honeycombs_in_one_piece() {
             m.axis_normal_deg.mean,
             m.parallel_baseline_deg.mean
         );
-        let base = &made.optimized.honeycomb.base;
-        assert_eq!(pieces(base), 1, "{file}: {:?}", made.notes);
+        let base = &made.honeycomb.base;
+        assert_eq!(pieces(base), 1, "{file}: {:?}", made.report.notes);
         let off = (base.faces.len() as f64 / 1500.0 - 1.0).abs();
         assert!(off <= 0.15, "{file}: {} cells", base.faces.len());
     }
@@ -300,7 +306,7 @@ fn the_shared_roofs_become_honeycombs_in_one_piece() {
         .unwrap()
         .mesh;
     let start = Instant::now();
-    let e = pipeline(&camelhead, &PipelineOptions::new(1500), &mut |_| {}).err();
+    let e = made(&camelhead, &PipelineOptions::new(1500)).err();
     assert!(e.is_some_and(|e| e.to_string().contains("too curved")));
     assert!(start.elapsed().as_secs_f64() < 5.0);
 }

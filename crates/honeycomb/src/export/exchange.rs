@@ -161,7 +161,7 @@ pub fn export(
     }
     let cut = match options.material_thickness {
         Some(t) => {
-            check_positive_length("--material-thickness", t)?;
+            check_positive_length("material_thickness", t)?;
             Some(EndCut::new(t))
         }
         None => None,
@@ -219,7 +219,7 @@ pub fn export(
     };
     let label_height = match options.label_height {
         Some(l) => {
-            check_positive_length("--label-height", l)?;
+            check_positive_length("label_height", l)?;
             l
         }
         None => 0.2 * median(h.depths().collect()),

@@ -206,10 +206,12 @@ impl InitOptions {
 
     pub fn validate(&self) -> Result<()> {
         match self.size {
-            CellSize::Cells(n) if n == 0 || n > MAX_CELLS => Err(Error::Parameter(format!(
-                "--cells {n}: expected 1 to {MAX_CELLS}"
-            ))),
-            CellSize::EdgeLength(l) => crate::error::check_positive_length("--edge-length", l),
+            CellSize::Cells(n) if n == 0 || n > MAX_CELLS => Err(Error::option(
+                "cells",
+                n,
+                format!("expected 1 to {MAX_CELLS}"),
+            )),
+            CellSize::EdgeLength(l) => crate::error::check_positive_length("edge_length", l),
             _ => Ok(()),
         }
     }

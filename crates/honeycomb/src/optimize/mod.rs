@@ -24,6 +24,7 @@ pub use variants::{shading_axes, unit_light, AxesOptions, ParallelOptions};
 pub use weights::Weights;
 
 pub(crate) use problem::use_wall_planes;
+pub(crate) use variants::check_weight;
 
 use crate::constraints::{
     ConstantDepth, EdgeParallelity, Layout, NodeOrientation, OffsetBlock, OffsetOnAxis,
@@ -59,7 +60,7 @@ pub struct OptimizeOptions {
 }
 
 /// The unknowns behind the wall normals.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum WallNormals {
     /// Cell points for a plain honeycomb, normals per edge with a variant (parallel meshes,
@@ -95,11 +96,6 @@ pub fn check_thickness(t: f64) -> Result<()> {
     crate::error::check_positive_length("thickness", t)
 }
 
-/// How [`OptimizeOptions::validate`] names the lengths it checks: the thickness, the
-/// minimum edge length and the depth of parallel meshes. A front passes its own names to
-/// [`OptimizeOptions::validate_as`] (the CLI its flags).
-pub const LENGTH_LABELS: [&str; 3] = ["thickness", "minimum edge length", "depth"];
-
 /// Thickness and depth beyond this many mean edge lengths are refused: no structure is that
 /// deep, and the solve would lose the cells' scale in roundoff.
 pub(crate) const MAX_LENGTH: f64 = 1e3;
@@ -108,14 +104,17 @@ pub(crate) const MAX_LENGTH: f64 = 1e3;
 const MAX_MIN_EDGE: f64 = 10.0;
 
 /// Refuses a length parameter more than `ratio` mean edge lengths `edge` of the base mesh.
-pub(crate) fn check_scale(label: &str, length: f64, ratio: f64, edge: f64) -> Result<()> {
+pub(crate) fn check_scale(field: &'static str, length: f64, ratio: f64, edge: f64) -> Result<()> {
     if length > ratio * edge {
-        return Err(Error::Parameter(format!(
-            "{label} {}: more than {ratio} times the base mesh's mean edge length \
-             {}; expected a length in the model's units",
+        return Err(Error::option(
+            field,
             rounded(length, 6),
-            rounded(edge, 6)
-        )));
+            format!(
+                "more than {ratio} times the base mesh's mean edge length {}; expected a \
+                 length in the model's units",
+                rounded(edge, 6)
+            ),
+        ));
     }
     Ok(())
 }
@@ -176,33 +175,24 @@ impl OptimizeOptions {
         options
     }
 
-    /// Checks the options against the (valid) base mesh they are for.
+    /// Checks the options against the (valid) base mesh they are for, naming an offender by
+    /// its field in [`crate::Options`].
     pub fn validate(&self, base: &PolyMesh) -> Result<()> {
-        self.validate_as(base, LENGTH_LABELS)
-    }
-
-    /// `validate` naming the thickness, the minimum edge length and the depth by `labels`
-    /// (a front's flags; see [`LENGTH_LABELS`]).
-    pub fn validate_as(
-        &self,
-        base: &PolyMesh,
-        [thickness, min_edge, depth_label]: [&str; 3],
-    ) -> Result<()> {
         self.weights.validate()?;
         crate::limits::check_solve(base, self.solver.max_iterations)?;
         let edge = base.mean_edge_length();
         if let Some(t) = self.thickness {
-            crate::error::check_positive_length(thickness, t)?;
-            check_scale(thickness, t, MAX_LENGTH, edge)?;
+            crate::error::check_positive_length("thickness", t)?;
+            check_scale("thickness", t, MAX_LENGTH, edge)?;
         }
         if let Some(length) = self.min_edge {
-            crate::error::check_positive_length(min_edge, length)?;
-            check_scale(min_edge, length, MAX_MIN_EDGE, edge)?;
+            crate::error::check_positive_length("min_edge", length)?;
+            check_scale("min_edge", length, MAX_MIN_EDGE, edge)?;
         }
         if let Some(p) = &self.parallel {
-            p.validate_as([depth_label, "parallelity weight", "depth weight"])?;
+            p.validate()?;
             if let Some(depth) = p.depth {
-                check_scale(depth_label, depth, MAX_LENGTH, edge)?;
+                check_scale("depth", depth, MAX_LENGTH, edge)?;
             }
         }
         if let Some(a) = &self.axes {

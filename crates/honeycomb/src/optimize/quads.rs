@@ -46,27 +46,16 @@ impl QuadOptions {
     pub fn validate(&self) -> Result<()> {
         if let Some(d) = self.direction {
             if !d.is_finite() || d.norm() < 1e-12 {
-                return Err(Error::Parameter(format!(
-                    "quad direction ({}, {}, {}): expected a non-zero finite vector",
-                    d.x, d.y, d.z
-                )));
+                return Err(Error::option(
+                    "quad_direction",
+                    crate::error::short_vector(d),
+                    "expected a non-zero finite vector",
+                ));
             }
         }
-        check_weight(
-            "quad planarity weight (w_cons_faces)",
-            self.w_cons_faces,
-            false,
-        )?;
-        check_weight(
-            "zigzag fairness weight (w_fair_zig)",
-            self.w_fair_zigzag,
-            true,
-        )?;
-        check_weight(
-            "straight fairness weight (w_fair_str)",
-            self.w_fair_straight,
-            true,
-        )
+        check_weight("w_cons_faces", self.w_cons_faces, false)?;
+        check_weight("w_fair_zig", self.w_fair_zigzag, true)?;
+        check_weight("w_fair_str", self.w_fair_straight, true)
     }
 }
 
@@ -183,11 +172,11 @@ mod tests {
             },
         ];
         let words = [
-            "direction",
-            "direction",
+            "quad_direction",
+            "quad_direction",
             "w_cons_faces",
-            "zigzag",
-            "straight",
+            "w_fair_zig",
+            "w_fair_str",
         ];
         for (o, word) in bad.iter().zip(words) {
             let e = o.validate().unwrap_err().to_string();

@@ -29,17 +29,11 @@ impl Default for ParallelOptions {
 
 impl ParallelOptions {
     pub fn validate(&self) -> Result<()> {
-        self.validate_as(["depth", "parallelity weight", "depth weight"])
-    }
-
-    /// `validate` naming the depth, the weight and the depth weight by `labels` (a front's
-    /// flags).
-    pub fn validate_as(&self, [depth, weight, depth_weight]: [&str; 3]) -> Result<()> {
         if let Some(c) = self.depth {
-            crate::error::check_positive_length(depth, c)?;
+            crate::error::check_positive_length("depth", c)?;
         }
-        check_weight(weight, self.weight, false)?;
-        check_weight(depth_weight, self.depth_weight, true)
+        check_weight("w_parallel", self.weight, false)?;
+        check_weight("w_depth", self.depth_weight, true)
     }
 }
 
@@ -77,7 +71,7 @@ impl AxesOptions {
                 "every prescribed axis is zero: nothing to prescribe".into(),
             ));
         }
-        check_weight("axes weight", self.weight, false)
+        check_weight("w_axes", self.weight, false)
     }
 
     /// The unit targets (zero where none is given).
@@ -120,13 +114,14 @@ pub fn unit_light(light: Vec3) -> Result<Vec3> {
     Ok(light.normalized())
 }
 
-pub(crate) fn check_weight(label: &str, w: f64, may_be_zero: bool) -> Result<()> {
+pub(crate) fn check_weight(field: &'static str, w: f64, may_be_zero: bool) -> Result<()> {
     if !w.is_finite() || !(0.0..=1e6).contains(&w) || (!may_be_zero && w == 0.0) {
         let range = if may_be_zero { "from 0" } else { "above 0" };
-        return Err(Error::Parameter(format!(
-            "{label} {}: expected a weight {range} up to 1e6",
-            crate::error::rounded(w, 6)
-        )));
+        return Err(Error::option(
+            field,
+            crate::error::rounded(w, 6),
+            format!("expected a weight {range} up to 1e6"),
+        ));
     }
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! Weights of the constraint families (defaults: the paper's Figure 16).
 
 use super::WallNormals;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use serde::Serialize;
 
 #[derive(Clone, Copy, Debug, Serialize)]
@@ -51,45 +51,21 @@ impl Weights {
         self
     }
 
-    /// The weights with the labels to name them by, in the order angle, consistency,
-    /// normalization, closeness, boundary, fairness, guide. The first three are the honeycomb
-    /// conditions and must be positive; the others may be 0 (off).
-    fn labelled<'a>(&self, labels: [&'a str; 7]) -> [(&'a str, f64, bool); 7] {
-        let w = [
-            self.angle,
-            self.consistency,
-            self.normalization(),
-            self.closeness,
-            self.boundary,
-            self.fairness,
-            self.guide,
+    /// Checks every weight, naming an offender by its field in [`crate::Options`]. The first
+    /// three are the honeycomb conditions and must be positive; the others may be 0 (off).
+    pub fn validate(&self) -> Result<()> {
+        let weights = [
+            ("w_angle", self.angle, true),
+            ("w_cons", self.consistency, true),
+            ("w_norm", self.normalization(), true),
+            ("w_close", self.closeness, false),
+            ("w_boundary", self.boundary, false),
+            ("w_fair", self.fairness, false),
+            ("w_guide", self.guide, false),
         ];
-        std::array::from_fn(|k| (labels[k], w[k], k < 3))
-    }
-
-    /// Checks every weight, naming an offender by its label in `labels` (see `labelled`).
-    pub fn validate_as(&self, labels: [&str; 7]) -> Result<()> {
-        for (label, w, required) in self.labelled(labels) {
-            if !w.is_finite() || !(0.0..=1e6).contains(&w) || (required && w == 0.0) {
-                let range = if required { "above 0" } else { "from 0" };
-                return Err(Error::Parameter(format!(
-                    "{label} {}: expected a weight {range} up to 1e6",
-                    crate::error::rounded(w, 6)
-                )));
-            }
+        for (field, w, required) in weights {
+            super::variants::check_weight(field, w, !required)?;
         }
         Ok(())
-    }
-
-    pub fn validate(&self) -> Result<()> {
-        self.validate_as([
-            "weight angle",
-            "weight consistency",
-            "weight normalization",
-            "weight closeness",
-            "weight boundary",
-            "weight fairness",
-            "weight guide",
-        ])
     }
 }

@@ -24,7 +24,7 @@ use crate::init::{init, CellSize, Flattener, InitOptions, Initialized, Method};
 use crate::mesh::{validate_surface_mesh, PolyMesh};
 use crate::optimize::{
     optimize, optimize_made_mesh, Attempt, AxesOptions, Frame, OptimizeOptions, Optimized,
-    WallNormals, DEFAULT_THICKNESS, LENGTH_LABELS,
+    WallNormals, DEFAULT_THICKNESS,
 };
 use crate::reciprocal::{walls_across, Across, AcrossOptions, Stage};
 use crate::report::Report;
@@ -33,9 +33,10 @@ use crate::structure::{measure, Measures};
 use crate::surface::Surface;
 use std::time::Instant;
 
-/// Everything the pipeline runs with.
+/// Everything the pipeline runs with, in the solver's terms ([`crate::PipelineOptions`] is
+/// the front door's).
 #[derive(Clone, Debug)]
-pub struct PipelineOptions {
+pub struct Strategy {
     /// The base mesh; its method and flattening are the pipeline's to choose unless
     /// `init_chosen`.
     pub init: InitOptions,
@@ -47,22 +48,18 @@ pub struct PipelineOptions {
     /// caller's choice).
     pub second_try: bool,
     pub across: AcrossOptions,
-    /// How messages name the thickness, the minimum edge length and the depth
-    /// ([`OptimizeOptions::validate_as`]; the CLI's flags).
-    pub length_labels: [&'static str; 3],
 }
 
-impl PipelineOptions {
+impl Strategy {
     /// The defaults for about `cells` cells.
-    pub fn new(cells: usize) -> PipelineOptions {
-        PipelineOptions {
+    pub fn new(cells: usize) -> Strategy {
+        Strategy {
             init: InitOptions::new(CellSize::Cells(cells)),
             init_chosen: false,
             walls: Walls::Across,
             optimize: OptimizeOptions::default(),
             second_try: true,
             across: AcrossOptions::default(),
-            length_labels: LENGTH_LABELS,
         }
     }
 }
@@ -116,13 +113,13 @@ const FACING_RETRY: f64 = 1.0;
 
 /// Runs the pipeline on `surface`.
 pub fn pipeline(
-    surface: &PolyMesh,
-    options: &PipelineOptions,
+    model_surface: &Surface,
+    options: &Strategy,
     progress: &mut dyn FnMut(Step),
 ) -> Result<Pipelined> {
     let start = Instant::now();
+    let surface = model_surface.source_mesh();
     validate_surface_mesh(surface)?;
-    let model_surface = Surface::from_mesh(surface)?;
     let mut notes = Vec::new();
     // Variants solve a plan-view mesh by the guided projection; their axes are their own.
     let walls = match options.walls {
@@ -142,7 +139,7 @@ pub fn pipeline(
         let last = k + 1 == attempts.len();
         progress(Step::Init);
         let (made, made_notes) =
-            match base_mesh(surface, &model_surface, init_options, options, walls) {
+            match base_mesh(surface, model_surface, init_options, options, walls) {
                 Ok(made) => made,
                 Err(e) if !last => {
                     notes.push(format!(
@@ -177,7 +174,7 @@ pub fn pipeline(
         let solved = solve_made(
             &made,
             surface,
-            &model_surface,
+            model_surface,
             options,
             walls,
             last,
@@ -285,7 +282,7 @@ fn base_mesh(
     surface: &PolyMesh,
     model_surface: &Surface,
     init_options: &InitOptions,
-    options: &PipelineOptions,
+    options: &Strategy,
     walls: Walls,
 ) -> Result<(Initialized, Vec<String>)> {
     let mut notes = Vec::new();
@@ -361,14 +358,14 @@ fn solve_made(
     made: &Initialized,
     surface: &PolyMesh,
     model_surface: &Surface,
-    options: &PipelineOptions,
+    options: &Strategy,
     walls: Walls,
     fallback: bool,
     progress: &mut dyn FnMut(Step),
 ) -> Result<std::result::Result<Solved, (String, usize)>> {
     options
         .optimize
-        .validate_as(&made.base, options.length_labels)?;
+        .validate(&made.base)?;
     if walls == Walls::Across {
         match across_or_none(
             &made.base,
@@ -403,22 +400,22 @@ fn solve_made(
     )?))
 }
 
-/// Solves a designer's base mesh on `surface` (`None`: the base mesh itself) with its walls as
-/// asked: across S by the fitted sheet (the guided projection where that gives no honeycomb,
+/// Solves a designer's base mesh on `surface` (which may be the base mesh itself,
+/// [`Surface::of_base`]) with its walls as asked: across S by the fitted sheet (the guided projection where that gives no honeycomb,
 /// which a note says), free by the guided projection, or uniform or along a direction by the
 /// guided projection with those axes prescribed. No cell is dropped: a designer's cells are
 /// the design. Variants (parallel meshes, quads, prescribed axes) go to
 /// [`crate::optimize::optimize`] directly.
 pub fn solve_base(
     base: &PolyMesh,
-    surface: Option<&PolyMesh>,
+    model_surface: &Surface,
     walls: Walls,
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(Step),
 ) -> Result<Solved> {
     let start = Instant::now();
-    let surface_mesh = surface.unwrap_or(base);
-    let model_surface = Surface::from_mesh(surface_mesh)?;
+    let surface_mesh = model_surface.source_mesh();
+    let surface = model_surface.design_mesh();
     let mut not_clean = None;
     if walls == Walls::Across {
         let keep_cells = AcrossOptions {
@@ -429,7 +426,7 @@ pub fn solve_base(
         match across_or_none(
             base,
             surface_mesh,
-            &model_surface,
+            model_surface,
             options,
             &keep_cells,
             progress,
@@ -466,7 +463,7 @@ pub fn solve_base(
         iterations += 1;
         progress(Step::Iteration("guided projection", 1, info))
     })?;
-    let measures = measure(&optimized.honeycomb, &model_surface);
+    let measures = measure(&optimized.honeycomb, model_surface);
     let mut report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
     report.walls = if walls == Walls::Across {
         Walls::Free
@@ -535,10 +532,12 @@ fn across_or_none(
     progress: &mut dyn FnMut(Step),
 ) -> Result<std::result::Result<Solved, NotClean>> {
     let start = Instant::now();
-    let across_options = AcrossOptions {
+    let mut across_options = AcrossOptions {
         thickness: options.thickness,
         ..across_options.clone()
     };
+    across_options.field.cancel = options.solver.cancel.clone();
+    across_options.placement.cancel = options.solver.cancel.clone();
     let mut spent = 0;
     let across = walls_across(
         base,
@@ -922,7 +921,7 @@ fn guided(
     base: &PolyMesh,
     surface: &PolyMesh,
     model_surface: &Surface,
-    options: &PipelineOptions,
+    options: &Strategy,
     walls: Walls,
     progress: &mut dyn FnMut(Step),
 ) -> Result<Solved> {

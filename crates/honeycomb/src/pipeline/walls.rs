@@ -1,7 +1,7 @@
 //! How the walls of a honeycomb stand on its design surface: the choice `--walls` makes.
 
 use crate::geometry::Vec3;
-use serde::{Serialize, Serializer};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::str::FromStr;
 
 /// How the walls stand on S.
@@ -56,6 +56,23 @@ impl Serialize for Walls {
     }
 }
 
+/// What [`Walls`] serializes to.
+impl<'de> Deserialize<'de> for Walls {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Walls, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Written {
+            Name(String),
+            Direction([f64; 3]),
+        }
+        let text = match Written::deserialize(d)? {
+            Written::Name(name) => name,
+            Written::Direction([x, y, z]) => format!("{x},{y},{z}"),
+        };
+        text.parse().map_err(serde::de::Error::custom)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -84,5 +101,10 @@ mod tests {
             "[0.0,0.0,1.0]"
         );
         assert_eq!(serde_json::to_string(&Walls::Across).unwrap(), "\"across\"");
+        for walls in [Walls::Across, Walls::Free, Walls::Direction(Vec3::new(0.0, 1.0, 0.0))] {
+            let text = serde_json::to_string(&walls).unwrap();
+            assert_eq!(serde_json::from_str::<Walls>(&text).unwrap(), walls);
+        }
+        assert!(serde_json::from_str::<Walls>("[0, 0, 0]").is_err());
     }
 }

@@ -14,6 +14,7 @@ use crate::error::Result;
 use crate::geometry::rotation::{frame, multiply, Matrix3};
 use crate::geometry::Vec3;
 use crate::solve::{
+    Cancel,
     Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
 };
 
@@ -38,6 +39,7 @@ pub struct AxisFieldOptions {
     pub energy_growth: f64,
     /// The sheet is done when every squared wall length is this close to 1.
     pub tolerance: f64,
+    pub cancel: Cancel,
 }
 
 impl Default for AxisFieldOptions {
@@ -52,6 +54,7 @@ impl Default for AxisFieldOptions {
             eps: 1e-3,
             energy_growth: 1.1,
             tolerance: 1e-8,
+            cancel: Cancel::default(),
         }
     }
 }
@@ -181,6 +184,7 @@ pub fn fit_axis_field(
         // Done by the walls' lengths, below: the rows of the fit never vanish.
         tolerance: 0.0,
         energy_growth: options.energy_growth,
+        cancel: options.cancel.clone(),
         ..SolverOptions::default()
     };
     let pairs = sheet.unit_pairs();

@@ -14,6 +14,7 @@ use crate::error::Result;
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::{
+    Cancel,
     Constraint, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
     Substitution,
 };
@@ -31,6 +32,7 @@ pub struct PlacementOptions {
     /// Weight of staying where the base mesh put a vertex: inner vertices, boundary ones.
     pub anchor: f64,
     pub boundary_anchor: f64,
+    pub cancel: Cancel,
 }
 
 impl Default for PlacementOptions {
@@ -41,6 +43,7 @@ impl Default for PlacementOptions {
             evenness: 3.0,
             anchor: 0.05,
             boundary_anchor: 0.2,
+            cancel: Cancel::default(),
         }
     }
 }
@@ -149,6 +152,7 @@ pub fn place(
         max_iterations: 1,
         eps: 1e-6,
         eps_min: 1e-6,
+        cancel: options.cancel.clone(),
         ..SolverOptions::default()
     };
     let mut start = GuidedProjection::with_substitution(
@@ -174,6 +178,7 @@ pub fn place(
         eps: 1e-6,
         eps_min: 1e-6,
         tolerance: 0.0,
+        cancel: options.cancel.clone(),
         ..SolverOptions::default()
     };
     // The iterations asked for, then more while a vertex stays off S (the tangent planes of

@@ -1,6 +1,7 @@
 //! Guided projection (Tang et al. 2014): a regularized Gauss-Newton method for systems of
 //! linear and quadratic constraints, on a sparsity pattern that is fixed for the whole solve.
 
+mod cancel;
 mod cholesky;
 mod columns;
 mod condensation;
@@ -13,6 +14,7 @@ mod solver;
 mod split;
 mod substitution;
 
+pub use cancel::Cancel;
 pub use constraint::{jacobian_fd_error, Constraint, Role, GUIDE_FADE};
 pub use solver::{
     FamilyResidual, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,

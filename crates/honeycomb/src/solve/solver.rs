@@ -1,6 +1,7 @@
 //! The guided-projection iteration: linearize every family at the current iterate, solve the
 //! regularized normal equations on the fixed pattern, control the step, repeat.
 
+use super::cancel::Cancel;
 use super::cholesky::Cholesky;
 use super::condensation::Condensation;
 use super::constraint::{Constraint, Role};
@@ -24,6 +25,8 @@ pub struct SolverOptions {
     pub step_control: bool,
     /// With step control: the factor a whole step may multiply the energy by.
     pub energy_growth: f64,
+    /// Read before every step: once set, the solve stops with [`Error::Cancelled`].
+    pub cancel: Cancel,
 }
 
 impl Default for SolverOptions {
@@ -35,6 +38,7 @@ impl Default for SolverOptions {
             tolerance: 1e-11,
             step_control: true,
             energy_growth: ENERGY_GROWTH_ALLOWED,
+            cancel: Cancel::default(),
         }
     }
 }
@@ -296,6 +300,9 @@ impl<'a> GuidedProjection<'a> {
         state: &mut SolveState,
         opts: &SolverOptions,
     ) -> Result<Option<IterationInfo>> {
+        if opts.cancel.is_cancelled() {
+            return Err(Error::Cancelled);
+        }
         let n = x.len();
         if let Some(i) = x.iter().position(|v| !v.is_finite()) {
             return Err(Error::Solver(format!("unknown {i} is not finite")));

@@ -29,7 +29,7 @@ use std::collections::VecDeque;
 use std::str::FromStr;
 
 /// Which long diagonal splits each hexagon.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum QuadPattern {
     /// Every cell along the straight class (Figs. 1, 11).

@@ -54,6 +54,10 @@ pub struct Surface {
     boundary_vertex: Vec<bool>,
     bvh: Bvh,
     boundary: Boundary,
+    /// The mesh S was made from, as given (a solve works on a copy in its own frame).
+    source: PolyMesh,
+    /// S is the base mesh itself (no design surface given): its zigzag boundary is not S's.
+    of_base: bool,
 }
 
 impl Surface {
@@ -116,7 +120,48 @@ impl Surface {
             boundary_vertex,
             bvh,
             boundary,
+            source: mesh.clone(),
+            of_base: false,
         })
+    }
+
+    /// Reads a design surface (OBJ, OFF or PLY: triangles, quads or polygons), checked for what
+    /// S must be (finite, manifold, orientable, no zero-area faces); errors name the file.
+    /// Warnings of the reader (skipped lines, ...) are left out: read with
+    /// [`crate::mesh::read_mesh`] to see them.
+    pub fn read(path: impl AsRef<std::path::Path>) -> Result<Surface> {
+        let path = path.as_ref();
+        let mesh = crate::mesh::read_mesh(path)?.mesh;
+        Surface::new(mesh).map_err(|e| e.about_file(path))
+    }
+
+    /// A design surface from a polygon mesh, checked as [`Surface::read`] does.
+    pub fn new(mesh: PolyMesh) -> Result<Surface> {
+        crate::mesh::validate_surface_mesh(&mesh)?;
+        Surface::from_mesh(&mesh)
+    }
+
+    /// The base mesh itself as S, where no design surface is given: a solve keeps the
+    /// vertices close to it but not its zigzag boundary on S's boundary.
+    pub fn of_base(base: &crate::BaseMesh) -> Result<Surface> {
+        let mut s = Surface::from_mesh(base.mesh())?;
+        s.of_base = true;
+        Ok(s)
+    }
+
+    /// The mesh S was made from.
+    pub fn source_mesh(&self) -> &PolyMesh {
+        &self.source
+    }
+
+    /// S is a base mesh itself ([`Surface::of_base`]).
+    pub fn is_base(&self) -> bool {
+        self.of_base
+    }
+
+    /// The design surface's mesh to solve on: `None` where S is the base mesh itself.
+    pub(crate) fn design_mesh(&self) -> Option<&PolyMesh> {
+        (!self.of_base).then_some(&self.source)
     }
 
     /// The exact closest point of S to `p`.

@@ -53,7 +53,7 @@ pub fn field_hex_mesh(
     follow_boundary: bool,
     seed: u64,
 ) -> Result<PolyMesh> {
-    crate::error::check_positive_length("edge length", edge)?;
+    crate::error::check_positive_length("edge_length", edge)?;
     if let Some((k, _)) = strokes
         .iter()
         .enumerate()

@@ -1,0 +1,332 @@
+//! What an optimization runs with, as plain data: the same names and defaults as the
+//! command line's flags (`w_angle` is `--w-angle`), so that any front can fill it in.
+
+use crate::error::{check_positive_length, short_number, short_vector, Error, Result};
+use crate::geometry::Vec3;
+use crate::mesh::PolyMesh;
+use crate::optimize::{
+    shading_axes, unit_light, AxesOptions, OptimizeOptions, ParallelOptions, QuadOptions,
+    WallNormals, Weights,
+};
+use crate::pipeline::Walls;
+use crate::solve::SolverOptions;
+use crate::structure::QuadPattern;
+use crate::surface::Surface;
+use serde::{Deserialize, Serialize};
+
+/// The options of an optimization. `Options::default()` is what `honeycomb optimize` runs
+/// without flags: walls across S, a plain honeycomb.
+///
+/// ```
+/// use honeycomb::{Options, Variant};
+/// let options: Options = serde_json::from_str(
+///     r#"{ "walls": "uniform", "iterations": 20, "w_fair": 0 }"#,
+/// ).unwrap();
+/// assert_eq!(options.iterations, Some(20));
+/// assert!(options.validate().is_ok());
+/// // A field out of range is named, with its value.
+/// let bad = Options { eps: -1.0, ..Options::default() };
+/// assert!(bad.validate().unwrap_err().to_string().contains("eps -1"));
+/// let parallel = Options { variant: Variant::Parallel { depth: Some(0.2), w_parallel: None, w_depth: None }, ..Options::default() };
+/// assert!(parallel.validate().is_ok());
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Options {
+    /// How the walls stand on S (a plain honeycomb only).
+    pub walls: Walls,
+    /// The paper's variants: parallel meshes, quads, prescribed axes, shading.
+    pub variant: Variant,
+    /// Guided-projection iterations at most; `None`: 10, 20 for shading.
+    pub iterations: Option<usize>,
+    /// Initial regularization (in the frame where the mean edge is 1); it shrinks as steps
+    /// succeed.
+    pub eps: f64,
+    /// Distance between M and M' along the node axes (model units); `None`: 0.3 mean edge
+    /// lengths.
+    pub thickness: Option<f64>,
+    /// Every edge at least this long (model units); shading defaults to 0.3 mean edge lengths.
+    pub min_edge: Option<f64>,
+    /// Weight of the 120-degree node condition.
+    pub w_angle: f64,
+    /// Weight of each wall containing its edge.
+    pub w_cons: f64,
+    /// Weight of unit normals; `None`: 0.3 with cell points, 10 with normals per edge.
+    pub w_norm: Option<f64>,
+    /// Weight of closeness to S.
+    pub w_close: f64,
+    /// Weight of boundary vertices on S's boundary.
+    pub w_boundary: f64,
+    /// Weight of opposite-wall fairness; `None`: 3, and the pipeline may try 0 next.
+    pub w_fair: Option<f64>,
+    /// Weight of the node axes along S's normals in the first iterations (fading).
+    pub w_guide: f64,
+    /// The solver's unknowns for the walls.
+    pub wall_normals: WallNormals,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        let w = Weights::default();
+        Options {
+            walls: Walls::Across,
+            variant: Variant::Plain,
+            iterations: None,
+            eps: SolverOptions::default().eps,
+            thickness: None,
+            min_edge: None,
+            w_angle: w.angle,
+            w_cons: w.consistency,
+            w_norm: None,
+            w_close: w.closeness,
+            w_boundary: w.boundary,
+            w_fair: None,
+            w_guide: w.guide,
+            wall_normals: WallNormals::Auto,
+        }
+    }
+}
+
+/// The paper's variants (section 4). Each solves the base mesh as given by the guided
+/// projection, with one normal per edge.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Variant {
+    /// A honeycomb, nothing more.
+    #[default]
+    Plain,
+    /// Parallel meshes M, M' (Fig. 9): M' solved too, its edges parallel to M's.
+    Parallel {
+        /// A soft constant depth |v - v'| (model units).
+        depth: Option<f64>,
+        /// Weight of edge parallelity [1].
+        w_parallel: Option<f64>,
+        /// Weight of the constant depth [0.1].
+        w_depth: Option<f64>,
+    },
+    /// Every hexagon capped by two planar quads (Figs. 1, 11, 17).
+    Quads {
+        pattern: QuadPattern,
+        /// The straight polylines follow the lattice direction closest to this.
+        quad_direction: Option<Vec3>,
+        /// Weight of quad planarity [0.1].
+        w_cons_faces: Option<f64>,
+        /// Weight of zigzag fairness [0.01].
+        w_fair_zig: Option<f64>,
+        /// Weight of straight-polyline fairness [0.01].
+        w_fair_str: Option<f64>,
+    },
+    /// Prescribed node axes (Fig. 10): one direction per base-mesh vertex (zero: free).
+    Axes {
+        axes: Vec<Vec3>,
+        /// Weight of the prescribed axes [0.1].
+        w_axes: Option<f64>,
+    },
+    /// Shading (Fig. 18): node axes across the direction the light travels in, so that the
+    /// walls block it; `sun_path` adds directions whose light share is reported too.
+    Shading {
+        light: Vec3,
+        sun_path: Vec<Vec3>,
+        /// Weight of the axes across the light [0.03].
+        w_axes: Option<f64>,
+    },
+}
+
+impl Variant {
+    pub fn is_plain(&self) -> bool {
+        *self == Variant::Plain
+    }
+}
+
+/// Iterations beyond this are refused as a typo.
+const MAX_ITERATIONS: usize = 10_000;
+
+impl Options {
+    /// The iterations asked for, or the default.
+    pub fn max_iterations(&self) -> usize {
+        self.iterations.unwrap_or(match self.variant {
+            Variant::Shading { .. } => 20,
+            _ => 10,
+        })
+    }
+
+    /// Checks what does not depend on the meshes, naming an offending field and its value
+    /// ([`Error::Option`]).
+    pub fn validate(&self) -> Result<()> {
+        let iterations = self.max_iterations();
+        if iterations == 0 || iterations > MAX_ITERATIONS {
+            return Err(Error::option(
+                "iterations",
+                iterations,
+                format!("expected 1 to {MAX_ITERATIONS}"),
+            ));
+        }
+        // Below 1e-12 the regularization is lost in roundoff against unit weights.
+        if !self.eps.is_finite() || !(1e-12..=1e3).contains(&self.eps) {
+            return Err(Error::option(
+                "eps",
+                short_number(self.eps),
+                "expected a number from 1e-12 to 1e3, typically 1e-3",
+            ));
+        }
+        if let Some(t) = self.thickness {
+            check_positive_length("thickness", t)?;
+        }
+        if let Some(l) = self.min_edge {
+            check_positive_length("min_edge", l)?;
+        }
+        self.weights().validate()?;
+        if !self.variant.is_plain() && self.walls != Walls::Across {
+            return Err(Error::option(
+                "walls",
+                self.walls.label(),
+                "the walls shape the plain honeycomb; the variants solve the base mesh as \
+                 given",
+            ));
+        }
+        if !self.variant.is_plain() && self.wall_normals == WallNormals::CellPoints {
+            return Err(Error::option(
+                "wall_normals",
+                "cell_points",
+                "only for the plain honeycomb (the variants constrain the normals one by one)",
+            ));
+        }
+        match &self.variant {
+            Variant::Plain => Ok(()),
+            Variant::Parallel { .. } => self.parallel().map(|_| ()),
+            Variant::Quads { .. } => self.quads().map(|_| ()),
+            Variant::Axes { axes, w_axes } => {
+                if let Some(v) = axes.iter().position(|a| !a.is_finite()) {
+                    return Err(Error::option(
+                        "axes",
+                        format!("[{v}] {}", short_vector(axes[v])),
+                        "expected finite directions",
+                    ));
+                }
+                crate::optimize::check_weight("w_axes", w_axes.unwrap_or(0.1), false)
+            }
+            Variant::Shading {
+                light,
+                sun_path,
+                w_axes,
+            } => {
+                for (field, d) in std::iter::once(("light", light)).chain(sun_path.iter().map(|d| ("sun_path", d))) {
+                    unit_light(*d).map_err(|_| {
+                        Error::option(field, short_vector(*d), "expected a non-zero direction")
+                    })?;
+                }
+                crate::optimize::check_weight("w_axes", w_axes.unwrap_or(0.03), false)
+            }
+        }
+    }
+
+    /// The weights as the solver takes them.
+    pub(crate) fn weights(&self) -> Weights {
+        Weights {
+            angle: self.w_angle,
+            consistency: self.w_cons,
+            normalization: self.w_norm,
+            closeness: self.w_close,
+            boundary: self.w_boundary,
+            fairness: self.w_fair.unwrap_or(Weights::default().fairness),
+            guide: self.w_guide,
+        }
+    }
+
+    fn parallel(&self) -> Result<Option<ParallelOptions>> {
+        let Variant::Parallel {
+            depth,
+            w_parallel,
+            w_depth,
+        } = self.variant
+        else {
+            return Ok(None);
+        };
+        let defaults = ParallelOptions::default();
+        let p = ParallelOptions {
+            depth,
+            weight: w_parallel.unwrap_or(defaults.weight),
+            depth_weight: w_depth.unwrap_or(defaults.depth_weight),
+        };
+        p.validate()?;
+        Ok(Some(p))
+    }
+
+    fn quads(&self) -> Result<Option<QuadOptions>> {
+        let Variant::Quads {
+            pattern,
+            quad_direction,
+            w_cons_faces,
+            w_fair_zig,
+            w_fair_str,
+        } = self.variant
+        else {
+            return Ok(None);
+        };
+        let defaults = QuadOptions::default();
+        let q = QuadOptions {
+            pattern,
+            direction: quad_direction,
+            w_cons_faces: w_cons_faces.unwrap_or(defaults.w_cons_faces),
+            w_fair_zigzag: w_fair_zig.unwrap_or(defaults.w_fair_zigzag),
+            w_fair_straight: w_fair_str.unwrap_or(defaults.w_fair_straight),
+        };
+        q.validate()?;
+        Ok(Some(q))
+    }
+
+    /// The solver's options for what does not depend on the meshes (no prescribed axes yet).
+    pub(crate) fn optimize_options(&self) -> Result<OptimizeOptions> {
+        self.validate()?;
+        Ok(OptimizeOptions {
+            weights: self.weights(),
+            solver: SolverOptions {
+                max_iterations: self.max_iterations(),
+                eps: self.eps,
+                ..SolverOptions::default()
+            },
+            thickness: self.thickness,
+            min_edge: self.min_edge,
+            parallel: self.parallel()?,
+            quads: self.quads()?,
+            wall_normals: self.wall_normals,
+            ..OptimizeOptions::default()
+        })
+    }
+
+    /// The solver's options for `base` on `surface`: with prescribed axes (given, or across
+    /// the light on S) and the minimum edge that shading needs; checked against the base.
+    pub(crate) fn optimize_options_for(
+        &self,
+        base: &PolyMesh,
+        surface: &Surface,
+    ) -> Result<OptimizeOptions> {
+        let mut options = self.optimize_options()?;
+        let axes = match &self.variant {
+            Variant::Axes { axes, w_axes } => Some(AxesOptions {
+                targets: axes.clone(),
+                weight: w_axes.unwrap_or(AxesOptions::DEFAULT_WEIGHT),
+            }),
+            Variant::Shading { light, w_axes, .. } => {
+                // Walls tilted far from the normals collapse boundary edges without it.
+                options
+                    .min_edge
+                    .get_or_insert(SHADING_MIN_EDGE * base.mean_edge_length());
+                Some(AxesOptions {
+                    targets: shading_axes(surface, &base.vertices, *light)?,
+                    weight: w_axes.unwrap_or(AxesOptions::SHADING_WEIGHT),
+                })
+            }
+            _ => None,
+        };
+        if let Some(a) = &axes {
+            a.validate(base.vertices.len())?;
+        }
+        options.axes = axes;
+        options.validate(base)?;
+        Ok(options)
+    }
+}
+
+/// Shading's minimum edge length, in mean edge lengths of the base mesh.
+const SHADING_MIN_EDGE: f64 = 0.3;

@@ -1,0 +1,118 @@
+//! What an optimization or the pipeline gives back: the honeycomb, measured and judged.
+
+use crate::error::{rounded, Result};
+use crate::export::write_structure_with;
+use crate::init::InitReport;
+use crate::mesh::{OutputDir, PolyMesh, Verdict as Placement};
+use crate::report::Report;
+use crate::structure::{thickest_uncrossed, Honeycomb, Measures};
+use std::path::{Path, PathBuf};
+
+/// A result: the structure, its measures (from its realized meshes), whether it is a
+/// honeycomb and why not, and the report (`report.json`).
+pub struct Outcome {
+    pub honeycomb: Honeycomb,
+    pub measures: Measures,
+    pub verdict: Verdict,
+    pub report: Report,
+    /// The mesh the result started from: the base mesh given, or the one the pipeline made
+    /// (without the boundary cells it dropped).
+    pub base: PolyMesh,
+    /// The planar quads that cap the cells ([`crate::Variant::Quads`]).
+    pub quads: Option<PolyMesh>,
+    /// How the pipeline made its base mesh (`init.json`).
+    pub initialized: Option<InitReport>,
+}
+
+/// Whether a result is a honeycomb: every node within the 120-degree tolerance and every
+/// wall planar within its tolerance ([`Report::OMEGA_TOLERANCE_DEG`],
+/// [`Report::DELTA_TOLERANCE`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    pub honeycomb: bool,
+    /// Why not, in a sentence; `None` for a honeycomb.
+    pub why: Option<String>,
+    /// Where wall quads cross because the axes at their ends lean together: the thickness
+    /// below which none does (model units), if that is less than the structure's.
+    pub uncrossed_below: Option<f64>,
+}
+
+impl Verdict {
+    pub(crate) fn of(h: &Honeycomb, report: &Report) -> Verdict {
+        let m = &report.measures;
+        let uncrossed_below = (m.nonconvex_walls > 0)
+            .then(|| thickest_uncrossed(h))
+            .filter(|&t| t < report.thickness);
+        if report.honeycomb {
+            return Verdict {
+                honeycomb: true,
+                why: None,
+                uncrossed_below,
+            };
+        }
+        let mut why = format!(
+            "not a honeycomb after {} iterations: omega_max {:.3} deg, delta_max {:.1e} \
+             (tolerance {} deg, {:.0e})",
+            report.iterations,
+            m.omega_max_deg,
+            m.delta_max,
+            Report::OMEGA_TOLERANCE_DEG,
+            Report::DELTA_TOLERANCE,
+        );
+        if m.nonconvex_walls > 0 {
+            why += &format!(
+                "; {} wall quads are not convex at thickness {} (the node axes at their ends \
+                 lean together or apart across the wall)",
+                m.nonconvex_walls,
+                rounded(report.thickness, 4)
+            );
+        }
+        Verdict {
+            honeycomb: false,
+            why: Some(why),
+            uncrossed_below,
+        }
+    }
+}
+
+impl Outcome {
+    pub fn is_honeycomb(&self) -> bool {
+        self.verdict.honeycomb
+    }
+
+    /// Writes the structure files into the directory `dir` (created if needed):
+    /// structure.json, base.obj, offset.obj, walls.obj, report.json, quads.obj with quads,
+    /// and a pipeline's initial.obj and init.json.
+    pub fn write(&self, dir: &Path) -> Result<()> {
+        let mut extra: Vec<(&str, &PolyMesh)> = Vec::new();
+        if let Some(q) = &self.quads {
+            extra.push(("quads.obj", q));
+        }
+        if self.initialized.is_some() {
+            // The mesh the kept solve started from, so that `optimize` repeats it.
+            extra.push(("initial.obj", &self.base));
+        }
+        write_structure_with(dir, &self.honeycomb, &extra, &self.report)?;
+        if let Some(init) = &self.initialized {
+            crate::export::write_json(&dir.join("init.json"), init)?;
+        }
+        Ok(())
+    }
+
+    /// Writes the result as a whole: into `dir` for a honeycomb, else into `dir.failed` for
+    /// inspection (the other of the two is removed); nothing half-written is ever left in
+    /// either. Returns where it went.
+    pub fn save(&self, dir: impl AsRef<Path>) -> Result<PathBuf> {
+        let out = OutputDir::begin(dir.as_ref(), &[])?;
+        out.finish(self.placement(), |d| self.write(d))
+    }
+
+    /// Where the outputs of this result belong ([`OutputDir::finish`]).
+    pub(crate) fn placement(&self) -> Placement {
+        if self.verdict.honeycomb {
+            Placement::Passed
+        } else {
+            Placement::Failed
+        }
+    }
+}

@@ -1,0 +1,181 @@
+//! The two ways to a honeycomb: from a base mesh, and from a design surface alone.
+
+use super::{BaseMesh, Options, Outcome, Progress, Step, Variant, Verdict};
+use crate::analysis::{extruded_along_normals, shading_report};
+use crate::error::{Error, Result};
+use crate::init::{CellSize, InitOptions};
+use crate::mesh::check_base_near_surface;
+use crate::optimize::{optimize as solve, Optimized};
+use crate::pipeline::{pipeline as run_strategy, solve_base, Strategy};
+use crate::reciprocal::AcrossOptions;
+use crate::report::Report;
+use crate::structure::measure;
+use crate::surface::Surface;
+use std::time::Instant;
+
+/// What the pipeline makes its base mesh with, and how it optimizes it.
+#[derive(Clone, Debug)]
+pub struct PipelineOptions {
+    /// The base mesh: its cell size, and the method and flattening the pipeline tries first
+    /// when `init_chosen`.
+    pub init: InitOptions,
+    /// `init.method` and `init.flattener` are the caller's choice; else the pipeline picks
+    /// them for the walls asked (and may turn the grid or change method to get a honeycomb).
+    pub init_chosen: bool,
+    pub options: Options,
+}
+
+impl PipelineOptions {
+    /// The defaults for about `cells` cells.
+    pub fn new(cells: usize) -> PipelineOptions {
+        PipelineOptions {
+            init: InitOptions::new(CellSize::Cells(cells)),
+            init_chosen: false,
+            options: Options::default(),
+        }
+    }
+
+    /// The pipeline's strategy for these options, checked.
+    fn strategy(&self, progress: &Progress) -> Result<Strategy> {
+        self.init.validate()?;
+        let field = match &self.options.variant {
+            Variant::Axes { .. } => Some("axes"),
+            Variant::Shading { .. } => Some("light"),
+            _ => None,
+        };
+        if let Some(field) = field {
+            return Err(Error::option(
+                field,
+                "given",
+                "prescribes axes per vertex of a base mesh, and the pipeline makes its own \
+                 (make it with init, then optimize)",
+            ));
+        }
+        let mut optimize = self.options.optimize_options()?;
+        optimize.solver.cancel = progress.cancel_handle();
+        Ok(Strategy {
+            init: self.init.clone(),
+            init_chosen: self.init_chosen,
+            walls: self.options.walls,
+            optimize,
+            // The second try only when the fairness is not the caller's choice.
+            second_try: self.options.w_fair.is_none(),
+            across: AcrossOptions::default(),
+        })
+    }
+}
+
+/// Optimizes `base` into a honeycomb on the design surface `surface` (or on itself:
+/// [`Surface::of_base`]), with the walls and the variant `options` ask for.
+///
+/// ```
+/// use honeycomb::generate::{lifted_hex_patch, Shape};
+/// use honeycomb::{optimize, BaseMesh, Options, Progress, Surface};
+/// // About 150 vertices lifted onto a dome, and the dome.
+/// let (base, surface) = lifted_hex_patch(Shape::Dome, 150);
+/// let (base, surface) = (BaseMesh::from_mesh(base)?, Surface::new(surface)?);
+/// let outcome = optimize(&base, &surface, &Options::default(), &mut Progress::silent())?;
+/// assert!(outcome.is_honeycomb());
+/// assert!(outcome.measures.omega_max_deg < 0.01);
+/// # Ok::<(), honeycomb::Error>(())
+/// ```
+pub fn optimize(
+    base: &BaseMesh,
+    surface: &Surface,
+    options: &Options,
+    progress: &mut Progress,
+) -> Result<Outcome> {
+    let start = Instant::now();
+    if !surface.is_base() {
+        check_base_near_surface(base.mesh(), surface.source_mesh())?;
+    }
+    let mut solver_options = options.optimize_options_for(base.mesh(), surface)?;
+    solver_options.solver.cancel = progress.cancel_handle();
+    let (optimized, mut report) = if options.variant.is_plain() {
+        let solved = solve_base(
+            base.mesh(),
+            surface,
+            options.walls,
+            &solver_options,
+            &mut |step| progress.step(step),
+        )?;
+        (solved.optimized, solved.report)
+    } else {
+        let optimized = solve(
+            base.mesh(),
+            surface.design_mesh(),
+            &solver_options,
+            &mut |info| progress.step(Step::Iteration(VARIANT_SOLVE, 1, info)),
+        )?;
+        let measures = measure(&optimized.honeycomb, surface);
+        let report = Report::new(&optimized, &measures, 0.0);
+        (optimized, report)
+    };
+    if let Variant::Shading {
+        light, sun_path, ..
+    } = &options.variant
+    {
+        let before = extruded_along_normals(
+            base.mesh(),
+            &optimized.connectivity,
+            surface,
+            optimized.honeycomb.thickness,
+        );
+        report.shading = Some(shading_report(
+            &before,
+            &optimized.honeycomb,
+            *light,
+            sun_path,
+        ));
+    }
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(outcome(optimized, report, base.mesh().clone(), None))
+}
+
+/// What a variant's solve is called in [`Step::Iteration`].
+const VARIANT_SOLVE: &str = "guided projection";
+
+/// Makes a honeycomb on the design surface `surface` from nothing else: a hexagonal base
+/// mesh of about `init`'s cells, walls as asked, and the retries that it takes.
+///
+/// ```
+/// use honeycomb::generate::{design_surface, Shape};
+/// use honeycomb::{pipeline, PipelineOptions, Progress, Surface};
+/// let surface = Surface::new(design_surface(Shape::Saddle))?;
+/// let outcome = pipeline(&surface, &PipelineOptions::new(120), &mut Progress::silent())?;
+/// assert!(outcome.is_honeycomb());
+/// // Walls across S: the node axes lean from S's normals less than parallel ones would.
+/// let m = &outcome.measures;
+/// assert!(m.axis_normal_deg.mean < m.parallel_baseline_deg.mean);
+/// # Ok::<(), honeycomb::Error>(())
+/// ```
+pub fn pipeline(
+    surface: &Surface,
+    options: &PipelineOptions,
+    progress: &mut Progress,
+) -> Result<Outcome> {
+    let strategy = options.strategy(progress)?;
+    let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
+    let mut out = outcome(made.optimized, made.report, made.base, None);
+    out.initialized = Some(made.initialized.report);
+    Ok(out)
+}
+
+/// An outcome judged from its report (whose measures are of the realized meshes).
+fn outcome(
+    optimized: Optimized,
+    report: Report,
+    base: crate::mesh::PolyMesh,
+    initialized: Option<crate::init::InitReport>,
+) -> Outcome {
+    let verdict = Verdict::of(&optimized.honeycomb, &report);
+    Outcome {
+        measures: report.measures.clone(),
+        honeycomb: optimized.honeycomb,
+        quads: optimized.quads,
+        verdict,
+        report,
+        base,
+        initialized,
+    }
+}
