@@ -4,12 +4,9 @@
 
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::limits::{check_generated_vertices, MAX_VERTEX_ITERATIONS};
-use honeycomb::optimize::{optimize, OptimizeOptions};
+use honeycomb::optimize::WallNormals;
 use honeycomb::report::Report;
-use honeycomb::solve::SolverOptions;
-use honeycomb::structure::measure;
-use honeycomb::surface::Surface;
-use honeycomb::{Error, Result};
+use honeycomb::{optimize, BaseMesh, Error, Options, Progress, Result, Surface, Walls};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -128,21 +125,22 @@ pub fn run(args: Args) -> Result<()> {
     }
     for &size in &args.sizes {
         let (base, surface) = lifted_hex_patch(args.shape, size);
-        let base_options = if args.per_edge {
-            OptimizeOptions::per_edge()
-        } else {
-            OptimizeOptions::cell_points()
-        };
-        let options = OptimizeOptions {
-            solver: all_iterations(args.iterations),
-            ..base_options
+        let (base, surface) = (BaseMesh::from_mesh(base)?, Surface::new(surface)?);
+        let options = Options {
+            // The guided projection alone, as the paper's Figure 16 times it.
+            walls: Walls::Free,
+            wall_normals: if args.per_edge {
+                WallNormals::PerEdge
+            } else {
+                WallNormals::CellPoints
+            },
+            ..all_iterations(args.iterations)
         };
         let start = Instant::now();
-        let optimized = optimize(&base, Some(&surface), &options, &mut |_| {})?;
+        let outcome = optimize(&base, &surface, &options, &mut Progress::silent())?;
         let seconds = start.elapsed().as_secs_f64();
-        let measures = measure(&optimized.honeycomb, &Surface::from_mesh(&surface)?);
-        let report = Report::new(&optimized, &measures, seconds);
-        let s = &optimized.solve;
+        let report = &outcome.report;
+        let s = report;
         let iter_seconds = s.seconds_assembly + s.seconds_factorization + s.seconds_other;
         let per_iteration_ms = 1e3 * iter_seconds / s.iterations.max(1) as f64;
         let factor_share = 100.0 * s.seconds_factorization / iter_seconds.max(1e-12);
@@ -178,12 +176,12 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
-/// Solver options that run every iteration (the convergence test off), so rows compare.
-pub fn all_iterations(iterations: usize) -> SolverOptions {
-    SolverOptions {
-        max_iterations: iterations,
+/// Options that run every iteration (the convergence test off), so rows compare.
+pub fn all_iterations(iterations: usize) -> Options {
+    Options {
+        iterations: Some(iterations),
         tolerance: 0.0,
-        ..SolverOptions::default()
+        ..Options::default()
     }
 }
 

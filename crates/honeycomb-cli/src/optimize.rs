@@ -281,6 +281,7 @@ impl SolveArgs {
                 (_, true) => WallNormals::PerEdge,
                 _ => WallNormals::Auto,
             },
+            ..Options::default()
         };
         options.validate()?;
         Ok(options)

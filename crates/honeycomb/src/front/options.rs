@@ -42,6 +42,9 @@ pub struct Options {
     /// Initial regularization (in the frame where the mean edge is 1); it shrinks as steps
     /// succeed.
     pub eps: f64,
+    /// A solve has converged when every condition's residual is below this (in the frame
+    /// where the mean edge is 1); 0 runs every iteration (benchmarks).
+    pub tolerance: f64,
     /// Distance between M and M' along the node axes (model units); `None`: 0.3 mean edge
     /// lengths.
     pub thickness: Option<f64>,
@@ -73,6 +76,7 @@ impl Default for Options {
             variant: Variant::Plain,
             iterations: None,
             eps: SolverOptions::default().eps,
+            tolerance: SolverOptions::default().tolerance,
             thickness: None,
             min_edge: None,
             w_angle: w.angle,
@@ -167,6 +171,13 @@ impl Options {
                 "eps",
                 short_number(self.eps),
                 "expected a number from 1e-12 to 1e3, typically 1e-3",
+            ));
+        }
+        if !self.tolerance.is_finite() || !(0.0..=1.0).contains(&self.tolerance) {
+            return Err(Error::option(
+                "tolerance",
+                short_number(self.tolerance),
+                "expected a residual from 0 to 1",
             ));
         }
         if let Some(t) = self.thickness {
@@ -283,6 +294,7 @@ impl Options {
             solver: SolverOptions {
                 max_iterations: self.max_iterations(),
                 eps: self.eps,
+                tolerance: self.tolerance,
                 ..SolverOptions::default()
             },
             thickness: self.thickness,
