@@ -4,9 +4,10 @@
 
 use honeycomb::generate::{lifted_hex_patch, Shape};
 use honeycomb::limits::{check_generated_vertices, MAX_VERTEX_ITERATIONS};
-use honeycomb::optimize::WallNormals;
 use honeycomb::report::Report;
-use honeycomb::{optimize, BaseMesh, Error, Options, Progress, Result, Surface, Walls};
+use honeycomb::{
+    optimize, BaseMesh, Error, Options, Progress, Result, Surface, WallNormals, Walls,
+};
 use std::path::PathBuf;
 use std::time::Instant;
 

@@ -103,7 +103,7 @@ fn cases() -> Vec<Case> {
             options: Options {
                 // The guided projection alone, as the other rows.
                 walls: honeycomb::Walls::Free,
-                wall_normals: honeycomb::optimize::WallNormals::CellPoints,
+                wall_normals: honeycomb::WallNormals::CellPoints,
                 min_edge: Some(shortest),
                 ..all_iterations(15)
             },

@@ -4,8 +4,8 @@ use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs};
 use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
-    init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, InitReport, Initialized,
-    Method,
+    init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, InitReport,
+    Initialized, Method,
 };
 use honeycomb::limits::check_solve_cells;
 use honeycomb::mesh::{write_mesh, OutputDir, Outputs, PolyMesh};

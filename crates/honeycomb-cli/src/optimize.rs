@@ -7,12 +7,10 @@ use honeycomb::geometry::{parse_direction, read_axes};
 use honeycomb::mesh::{
     check_base_near_surface, nonconvex_faces, read_mesh, OutputDir, PolyMesh, Verdict,
 };
-use honeycomb::optimize::{WallNormals, Weights};
 use honeycomb::report::Report;
-use honeycomb::solve::SolverOptions;
 use honeycomb::structure::QuadPattern;
 use honeycomb::{
-    BaseMesh, Error, Options, Outcome, Progress, Result, Surface, Variant, Vec3, Walls,
+    BaseMesh, Error, Options, Outcome, Progress, Result, Surface, Variant, Vec3, WallNormals, Walls,
 };
 use std::path::{Path, PathBuf};
 
@@ -40,20 +38,20 @@ pub struct SolveArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub thickness: Option<f64>,
     /// Weight of the 120-degree node condition.
-    #[arg(long, default_value_t = Weights::default().angle, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = Options::default().w_angle, allow_negative_numbers = true)]
     pub w_angle: f64,
     /// Weight of wall consistency (the wall contains its edge).
-    #[arg(long, default_value_t = Weights::default().consistency, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = Options::default().w_cons, allow_negative_numbers = true)]
     pub w_cons: f64,
     /// Weight of the unit-normal condition [default: 0.3 with cell points, 10 with normals per
     /// edge].
     #[arg(long, allow_negative_numbers = true)]
     pub w_norm: Option<f64>,
     /// Weight of closeness to the reference surface.
-    #[arg(long, default_value_t = Weights::default().closeness, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = Options::default().w_close, allow_negative_numbers = true)]
     pub w_close: f64,
     /// Weight of keeping boundary vertices on the surface's boundary.
-    #[arg(long, default_value_t = Weights::default().boundary, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = Options::default().w_boundary, allow_negative_numbers = true)]
     pub w_boundary: f64,
     /// Weight of opposite-wall fairness in hexagons (fades with the regularization) [default:
     /// 3; pipeline tries 0 next if 3 gives no honeycomb].
@@ -124,7 +122,7 @@ pub struct SolveArgs {
     pub w_fair_str: Option<f64>,
     /// Guide the node axes towards the surface normals in the first iterations, so that walls
     /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
-    #[arg(long, default_value_t = Weights::default().guide, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = Options::default().w_guide, allow_negative_numbers = true)]
     pub w_guide: f64,
     /// How the walls stand on the surface: `across` (node axes as close to its normals as a
     /// honeycomb allows, cells of one size), `uniform` (every axis along its mean normal), a
@@ -138,7 +136,7 @@ pub struct SolveArgs {
     )]
     pub walls: Option<String>,
     /// Initial regularization eps (normalized frame); it shrinks as steps succeed.
-    #[arg(long, default_value_t = SolverOptions::default().eps, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = Options::default().eps, allow_negative_numbers = true)]
     pub eps: f64,
     /// No progress output.
     #[arg(short, long)]
@@ -293,9 +291,9 @@ impl SolveArgs {
         if let (Some(path), Variant::Axes { axes, .. }) = (&self.axes, &mut options.variant) {
             *axes = read_axes(path, base.vertices().len())?;
             options.validate().map_err(|e| match e {
-                Error::Option { value, expected, .. } => {
-                    Error::Parameter(format!("--axes {}: {value}: {expected}", path.display()))
-                }
+                Error::Option {
+                    value, expected, ..
+                } => Error::Parameter(format!("--axes {}: {value}: {expected}", path.display())),
                 e => e,
             })?;
         }
@@ -457,7 +455,8 @@ pub fn run(args: Args) -> Result<()> {
     // Parameters first: a typo should not wait for a large mesh to load.
     args.opts.options()?;
     let output = args.opts.output();
-    let base = BaseMesh::from_mesh(load(&args.base, output)?).map_err(|e| name_file(&args.base, e))?;
+    let base =
+        BaseMesh::from_mesh(load(&args.base, output)?).map_err(|e| name_file(&args.base, e))?;
     let surface = match &args.opts.surface {
         Some(path) => {
             let surface = Surface::new(load(path, output)?).map_err(|e| name_file(path, e))?;

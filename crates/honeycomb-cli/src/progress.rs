@@ -1,7 +1,6 @@
 //! How a long run talks to the terminal: a progress bar, nothing (`--quiet`), or JSON on stdout.
 
-use honeycomb::pipeline::Step;
-use honeycomb::solve::IterationInfo;
+use honeycomb::{IterationInfo, Step};
 use indicatif::{ProgressBar, ProgressStyle};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

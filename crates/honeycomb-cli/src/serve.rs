@@ -4,7 +4,7 @@ use crate::optimize::name_file;
 use crate::progress::{Output, Spinner};
 use honeycomb::error::rounded;
 use honeycomb::generate::Shape;
-use honeycomb::pipeline::Walls;
+use honeycomb::Walls;
 use honeycomb::{Error, Result};
 use honeycomb_serve::{start, ServeOptions, Source};
 use std::path::PathBuf;

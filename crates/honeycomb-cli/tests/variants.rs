@@ -299,37 +299,47 @@ fn bad_axes_and_sun_path_files_are_named() {
 /// library's.
 #[test]
 fn the_help_states_the_library_defaults_of_the_variant_weights() {
-    use honeycomb::optimize::{AxesOptions, ParallelOptions, QuadOptions};
+    use honeycomb::structure::QuadPattern;
+    use honeycomb::{Variant, Vec3};
     let output = run(["optimize", "--help"]);
     let help = stdout(&output)
         .split_whitespace()
         .collect::<Vec<_>>()
         .join(" ");
-    let (parallel, quads) = (ParallelOptions::default(), QuadOptions::default());
-    let expected = [
-        ("--w-parallel", format!("[default: {}]", parallel.weight)),
-        ("--w-depth", format!("[default: {}]", parallel.depth_weight)),
-        (
-            "--w-axes",
-            format!(
-                "[default: {}, {} with --light]",
-                AxesOptions::DEFAULT_WEIGHT,
-                AxesOptions::SHADING_WEIGHT
-            ),
-        ),
-        (
-            "--w-cons-faces",
-            format!("[default: {}]", quads.w_cons_faces),
-        ),
-        (
-            "--w-fair-zig",
-            format!("[default: {}]", quads.w_fair_zigzag),
-        ),
-        (
-            "--w-fair-str",
-            format!("[default: {}]", quads.w_fair_straight),
-        ),
-    ];
+    let weights = |v: Variant| v.weights();
+    let parallel = weights(Variant::Parallel {
+        depth: None,
+        w_parallel: None,
+        w_depth: None,
+    });
+    let quads = weights(Variant::Quads {
+        pattern: QuadPattern::Zigzag,
+        quad_direction: None,
+        w_cons_faces: None,
+        w_fair_zig: None,
+        w_fair_str: None,
+    });
+    let axes = weights(Variant::Axes {
+        axes: Vec::new(),
+        w_axes: None,
+    })[0]
+        .1;
+    let shading = weights(Variant::Shading {
+        light: Vec3::new(0.0, 0.0, -1.0),
+        sun_path: Vec::new(),
+        w_axes: None,
+    })[0]
+        .1;
+    let flag = |field: &str| format!("--{}", field.replace('_', "-"));
+    let mut expected: Vec<(String, String)> = parallel
+        .iter()
+        .chain(&quads)
+        .map(|&(field, w)| (flag(field), format!("[default: {w}]")))
+        .collect();
+    expected.push((
+        "--w-axes".into(),
+        format!("[default: {axes}, {shading} with --light]"),
+    ));
     for (flag, default) in expected {
         let at = help
             .find(&format!("{flag} <"))

@@ -1,7 +1,7 @@
 //! The editor server over real sockets: what it serves, what it refuses, how it streams.
 
 use honeycomb::generate::Shape;
-use honeycomb::pipeline::Walls;
+use honeycomb::Walls;
 use honeycomb_serve::latency::Client;
 use honeycomb_serve::{start, ServeOptions, Server, Source};
 use serde_json::{json, Value};

@@ -9,7 +9,11 @@ use std::path::Path;
 
 fn main() -> honeycomb::Result<()> {
     let surface = Surface::new(design_surface(Shape::Saddle))?;
-    let made = pipeline(&surface, &PipelineOptions::new(750), &mut Progress::silent())?;
+    let made = pipeline(
+        &surface,
+        &PipelineOptions::new(750),
+        &mut Progress::silent(),
+    )?;
     let m = &made.measures;
     println!(
         "{} cells: omega_max {:.1e} deg, delta_max {:.1e}, axis to normal {:.1} deg (parallel axes: {:.1})",
@@ -20,7 +24,11 @@ fn main() -> honeycomb::Result<()> {
         m.parallel_baseline_deg.mean
     );
     made.save("saddle-honeycomb")?;
-    let model = Model::new(made.honeycomb, Some(surface.source_mesh().clone()), Default::default())?;
+    let model = Model::new(
+        made.honeycomb,
+        Some(surface.source_mesh().clone()),
+        Default::default(),
+    )?;
     let written = export(
         &model,
         &ExportOptions::default(),

@@ -59,7 +59,11 @@ impl Error {
     }
 
     /// A field of the front door's options outside its range.
-    pub fn option(field: &'static str, value: impl std::fmt::Display, expected: impl Into<String>) -> Error {
+    pub fn option(
+        field: &'static str,
+        value: impl std::fmt::Display,
+        expected: impl Into<String>,
+    ) -> Error {
         Error::Option {
             field,
             value: value.to_string(),

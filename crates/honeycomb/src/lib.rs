@@ -4,27 +4,29 @@
 //! The library is the product; the `honeycomb` binary is a thin front over it.
 
 pub mod analysis;
-pub mod constraints;
+pub(crate) mod constraints;
 pub mod edit;
 pub mod error;
-mod front;
 pub mod export;
 pub mod fabrication;
+mod front;
 pub mod generate;
 pub mod geometry;
 pub mod init;
 pub mod interactive;
 pub mod limits;
 pub mod mesh;
-pub mod optimize;
-pub mod parallel;
-pub mod pipeline;
-pub mod reciprocal;
+pub(crate) mod optimize;
+pub(crate) mod parallel;
+pub(crate) mod pipeline;
+pub(crate) mod reciprocal;
 pub mod render;
 pub mod report;
-pub mod solve;
+pub(crate) mod solve;
 pub mod structure;
 pub mod surface;
+#[cfg(test)]
+mod tests;
 
 pub use error::{Error, Result};
 pub use front::{
@@ -32,7 +34,8 @@ pub use front::{
     Verdict,
 };
 pub use geometry::Vec3;
+pub use optimize::WallNormals;
 pub use pipeline::Walls;
-pub use solve::Cancel;
+pub use solve::{Cancel, IterationInfo};
 pub use structure::{Honeycomb, Measures};
 pub use surface::Surface;

@@ -131,8 +131,7 @@ mod tests {
         );
         let e = check_solve_cells(&sized(CellSize::Cells(1_000_000)), &square).unwrap_err();
         assert!(
-            e.to_string()
-                .contains("cells 1000000: about 1000000 cells"),
+            e.to_string().contains("cells 1000000: about 1000000 cells"),
             "{e}"
         );
         check_solve_cells(&sized(CellSize::Cells(150_000)), &square).unwrap();

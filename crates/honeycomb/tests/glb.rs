@@ -5,8 +5,8 @@
 use honeycomb::export::{glb_bytes, Frame, Model, Units};
 use honeycomb::generate::{design_surface, Shape};
 use honeycomb::mesh::PolyMesh;
-use honeycomb::{pipeline, PipelineOptions, Progress, Surface};
 use honeycomb::structure::Honeycomb;
+use honeycomb::{pipeline, PipelineOptions, Progress, Surface};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::process::Command;

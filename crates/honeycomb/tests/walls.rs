@@ -165,7 +165,11 @@ fn a_band_around_a_hole_is_remeshed() {
     );
     let made = run(&band, 750);
     assert_clean(&made, "band", 750);
-    assert!(made.report.notes.iter().any(|n| n.contains("field-aligned")));
+    assert!(made
+        .report
+        .notes
+        .iter()
+        .any(|n| n.contains("field-aligned")));
     assert!(made.measures.axis_normal_deg.mean < 1.0);
 }
 

@@ -21,10 +21,6 @@ impl Layout {
         3 * (self.num_vertices + self.num_edges)
     }
 
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
     /// Index of the first coordinate of vertex `v`.
     pub fn vertex(&self, v: usize) -> usize {
         3 * v

@@ -70,8 +70,4 @@ impl BaseMesh {
     pub fn mesh(&self) -> &PolyMesh {
         &self.mesh
     }
-
-    pub(crate) fn connectivity(&self) -> &Connectivity {
-        &self.connectivity
-    }
 }

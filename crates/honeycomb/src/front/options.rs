@@ -140,6 +140,39 @@ impl Variant {
     pub fn is_plain(&self) -> bool {
         *self == Variant::Plain
     }
+
+    /// The variant's weights as a solve takes them, by field: the ones given, else the
+    /// defaults.
+    pub fn weights(&self) -> Vec<(&'static str, f64)> {
+        let (parallel, quads) = (ParallelOptions::default(), QuadOptions::default());
+        match self {
+            Variant::Plain => Vec::new(),
+            Variant::Parallel {
+                w_parallel,
+                w_depth,
+                ..
+            } => vec![
+                ("w_parallel", w_parallel.unwrap_or(parallel.weight)),
+                ("w_depth", w_depth.unwrap_or(parallel.depth_weight)),
+            ],
+            Variant::Quads {
+                w_cons_faces,
+                w_fair_zig,
+                w_fair_str,
+                ..
+            } => vec![
+                ("w_cons_faces", w_cons_faces.unwrap_or(quads.w_cons_faces)),
+                ("w_fair_zig", w_fair_zig.unwrap_or(quads.w_fair_zigzag)),
+                ("w_fair_str", w_fair_str.unwrap_or(quads.w_fair_straight)),
+            ],
+            Variant::Axes { w_axes, .. } => {
+                vec![("w_axes", w_axes.unwrap_or(AxesOptions::DEFAULT_WEIGHT))]
+            }
+            Variant::Shading { w_axes, .. } => {
+                vec![("w_axes", w_axes.unwrap_or(AxesOptions::SHADING_WEIGHT))]
+            }
+        }
+    }
 }
 
 /// Iterations beyond this are refused as a typo.
@@ -221,7 +254,9 @@ impl Options {
                 sun_path,
                 w_axes,
             } => {
-                for (field, d) in std::iter::once(("light", light)).chain(sun_path.iter().map(|d| ("sun_path", d))) {
+                for (field, d) in std::iter::once(("light", light))
+                    .chain(sun_path.iter().map(|d| ("sun_path", d)))
+                {
                     unit_light(*d).map_err(|_| {
                         Error::option(field, short_vector(*d), "expected a non-zero direction")
                     })?;
@@ -245,19 +280,16 @@ impl Options {
     }
 
     fn parallel(&self) -> Result<Option<ParallelOptions>> {
-        let Variant::Parallel {
-            depth,
-            w_parallel,
-            w_depth,
-        } = self.variant
-        else {
+        let Variant::Parallel { depth, .. } = self.variant else {
             return Ok(None);
         };
-        let defaults = ParallelOptions::default();
+        let [(_, weight), (_, depth_weight)] = self.variant.weights()[..] else {
+            unreachable!("a parallel variant has two weights");
+        };
         let p = ParallelOptions {
             depth,
-            weight: w_parallel.unwrap_or(defaults.weight),
-            depth_weight: w_depth.unwrap_or(defaults.depth_weight),
+            weight,
+            depth_weight,
         };
         p.validate()?;
         Ok(Some(p))

@@ -20,7 +20,7 @@ mod walls;
 pub use walls::Walls;
 
 use crate::error::{rounded, short_vector, Error, Result};
-use crate::init::{init, CellSize, Flattener, InitOptions, Initialized, Method};
+use crate::init::{init, Flattener, InitOptions, Initialized, Method};
 use crate::mesh::{validate_surface_mesh, PolyMesh};
 use crate::optimize::{
     optimize, optimize_made_mesh, Attempt, AxesOptions, Frame, OptimizeOptions, Optimized,
@@ -50,20 +50,6 @@ pub struct Strategy {
     pub across: AcrossOptions,
 }
 
-impl Strategy {
-    /// The defaults for about `cells` cells.
-    pub fn new(cells: usize) -> Strategy {
-        Strategy {
-            init: InitOptions::new(CellSize::Cells(cells)),
-            init_chosen: false,
-            walls: Walls::Across,
-            optimize: OptimizeOptions::default(),
-            second_try: true,
-            across: AcrossOptions::default(),
-        }
-    }
-}
-
 /// What the pipeline made.
 pub struct Pipelined {
     /// The hexagonal mesh `init` made (its report, which `init.json` holds).
@@ -71,11 +57,9 @@ pub struct Pipelined {
     /// The mesh the kept result started from: `initialized.base` without dropped cells.
     pub base: PolyMesh,
     pub optimized: Optimized,
-    pub measures: Measures,
-    /// `report.json` (its `seconds` from the pipeline's start).
+    /// `report.json` (its `seconds` from the pipeline's start; its notes say what the pipeline
+    /// changed on the way, one sentence each).
     pub report: Report,
-    /// What the pipeline changed on the way, one sentence each, for the front to show.
-    pub notes: Vec<String>,
 }
 
 /// Where the pipeline is, for a progress display.
@@ -193,9 +177,7 @@ pub fn pipeline(
                     initialized: made,
                     base: solved.base,
                     optimized: solved.optimized,
-                    measures: solved.measures,
                     report: solved.report,
-                    notes,
                 });
             }
             Ok(solved) => {
@@ -363,9 +345,7 @@ fn solve_made(
     fallback: bool,
     progress: &mut dyn FnMut(Step),
 ) -> Result<std::result::Result<Solved, (String, usize)>> {
-    options
-        .optimize
-        .validate(&made.base)?;
+    options.optimize.validate(&made.base)?;
     if walls == Walls::Across {
         match across_or_none(
             &made.base,

@@ -101,7 +101,11 @@ mod tests {
             "[0.0,0.0,1.0]"
         );
         assert_eq!(serde_json::to_string(&Walls::Across).unwrap(), "\"across\"");
-        for walls in [Walls::Across, Walls::Free, Walls::Direction(Vec3::new(0.0, 1.0, 0.0))] {
+        for walls in [
+            Walls::Across,
+            Walls::Free,
+            Walls::Direction(Vec3::new(0.0, 1.0, 0.0)),
+        ] {
             let text = serde_json::to_string(&walls).unwrap();
             assert_eq!(serde_json::from_str::<Walls>(&text).unwrap(), walls);
         }

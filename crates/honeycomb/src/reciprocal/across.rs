@@ -50,9 +50,8 @@ pub struct Across {
     /// Boundary cells dropped, the trimmed ones among them.
     pub dropped_cells: usize,
     pub trimmed_cells: usize,
-    /// Iterations of the sheet's fit and of every placement.
+    /// Iterations of the sheet's fits.
     pub field_iterations: usize,
-    pub placement_iterations: usize,
     /// Every solve, one after the other (the sheet's fits, then the placements).
     pub solve: SolveReport,
     /// The sheet's walls reached unit length.
@@ -83,7 +82,7 @@ pub fn walls_across(
     let mut conn = validate_base_mesh(&mesh)?;
     let mut sheet = Sheet::new(&mesh, &conn)?;
     let mut points = sheet.initial_points(&mesh, &conn, |p| normalized.normal_at(p));
-    let (mut field_iterations, mut placement_iterations, mut dropped_cells) = (0, 0, 0);
+    let (mut field_iterations, mut dropped_cells) = (0, 0);
     let mut solves: Option<SolveReport> = None;
     let mut chain = |next: SolveReport| {
         solves = Some(match solves.take() {
@@ -132,7 +131,6 @@ pub fn walls_across(
             &options.placement,
             &mut |i| progress(Stage::Placement, i),
         )?;
-        placement_iterations += placed.solve.iterations;
         chain(placed.solve);
         let vertices = placed.vertices.iter().map(|&p| frame.to_model(p)).collect();
         let thickness = options
@@ -163,7 +161,6 @@ pub fn walls_across(
                 dropped_cells,
                 trimmed_cells: 0,
                 field_iterations,
-                placement_iterations,
                 solve: solves.take().expect("a solve ran"),
                 field_converged,
             };

@@ -14,8 +14,8 @@ use crate::error::Result;
 use crate::geometry::rotation::{frame, multiply, Matrix3};
 use crate::geometry::Vec3;
 use crate::solve::{
-    Cancel,
-    Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
+    Cancel, Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState,
+    SolverOptions,
 };
 
 /// How the sheet is fitted.

@@ -22,7 +22,7 @@ mod sheet;
 mod trim;
 
 pub use across::{walls_across, Across, AcrossOptions, Stage};
-pub use axis_field::{fit_axis_field, AxisField, AxisFieldOptions};
-pub use placement::{place, slide_onto, Placed, PlacementOptions};
+pub use axis_field::{fit_axis_field, AxisFieldOptions};
+pub use placement::{place, PlacementOptions};
 pub use sheet::Sheet;
-pub use trim::{overhanging_cells, trim_overhang, without_honeycomb_cells, ON_S};
+pub use trim::{trim_overhang, ON_S};

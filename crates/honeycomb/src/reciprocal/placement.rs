@@ -14,8 +14,7 @@ use crate::error::Result;
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::{
-    Cancel,
-    Constraint, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
+    Cancel, Constraint, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
     Substitution,
 };
 use crate::surface::Surface;

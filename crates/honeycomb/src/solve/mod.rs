@@ -15,7 +15,9 @@ mod split;
 mod substitution;
 
 pub use cancel::Cancel;
-pub use constraint::{jacobian_fd_error, Constraint, Role, GUIDE_FADE};
+#[cfg(test)]
+pub use constraint::jacobian_fd_error;
+pub use constraint::{Constraint, Role};
 pub use solver::{
     FamilyResidual, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
 };

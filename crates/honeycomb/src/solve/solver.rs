@@ -215,10 +215,6 @@ impl<'a> GuidedProjection<'a> {
         })
     }
 
-    pub fn families(&self) -> &[Box<dyn Constraint + 'a>] {
-        &self.families
-    }
-
     /// Effective weight of family `f` at fade `fade` (the regularization's schedule without its
     /// floor, over its start). Fairness fades with `sqrt(fade)`: early on it steers the
     /// iteration towards regular cells (and makes it converge much faster than eps alone); at
@@ -536,11 +532,6 @@ impl SolveState {
     /// Steps taken so far.
     pub fn iterations(&self) -> usize {
         self.history.len()
-    }
-
-    /// Whether the last step found the conditions met.
-    pub fn converged(&self) -> bool {
-        self.converged
     }
 }
 

@@ -1,14 +1,14 @@
 //! The paper's variants end to end on generated surfaces: parallel meshes (Fig. 9) and
 //! prescribed node axes (Fig. 10, 18), measured on the realized meshes.
 
-use honeycomb::analysis::{extruded_along_normals, shading_report};
-use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::mesh::PolyMesh;
-use honeycomb::optimize::{optimize, shading_axes, AxesOptions, OptimizeOptions, ParallelOptions};
-use honeycomb::solve::SolverOptions;
-use honeycomb::structure::{axes_measures, measure, parallel_measures, AxesMeasures};
-use honeycomb::surface::Surface;
-use honeycomb::Vec3;
+use crate::analysis::{extruded_along_normals, shading_report};
+use crate::generate::{lifted_hex_patch, Shape};
+use crate::mesh::PolyMesh;
+use crate::optimize::{optimize, shading_axes, AxesOptions, OptimizeOptions, ParallelOptions};
+use crate::solve::SolverOptions;
+use crate::structure::{axes_measures, measure, parallel_measures, AxesMeasures};
+use crate::surface::Surface;
+use crate::Vec3;
 use std::time::Instant;
 
 fn options(iterations: usize) -> OptimizeOptions {
@@ -72,7 +72,7 @@ fn parallel_meshes_with_axes_across_a_vault() {
     let axes = &opt.honeycomb.axes;
     let spread = axes
         .iter()
-        .map(|a| honeycomb::structure::angle_deg(*a, axes[0]))
+        .map(|a| crate::structure::angle_deg(*a, axes[0]))
         .fold(0.0, f64::max);
     println!(
         "parallel cylinder it={} omega {:.2e} delta {:.2e} beta {:.2e}/{:.2e} depth {:.3}..{:.3} axis spread {spread:.1} deg",
@@ -195,6 +195,6 @@ fn shading_blocks_the_design_light() {
 /// passes by more than half again, and follow their targets less closely than on the dome.
 #[test]
 fn shading_on_a_roof() {
-    let a = shade(honeycomb::generate::roof(3300, 0.08), "roof");
+    let a = shade(crate::generate::roof(3300, 0.08), "roof");
     assert!(a.axes_angle_avg_deg < 5.0, "{a:?}");
 }

@@ -1,12 +1,12 @@
 //! Wall translations keep a honeycomb a honeycomb.
 
-use honeycomb::edit::{reciprocal, resize_cell, subdivide, translate_walls};
-use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::mesh::Connectivity;
-use honeycomb::optimize::{optimize, OptimizeOptions, Weights};
-use honeycomb::solve::SolverOptions;
-use honeycomb::structure::{measure, Honeycomb};
-use honeycomb::surface::Surface;
+use crate::edit::{reciprocal, resize_cell, subdivide, translate_walls};
+use crate::generate::{lifted_hex_patch, Shape};
+use crate::mesh::Connectivity;
+use crate::optimize::{optimize, OptimizeOptions, Weights};
+use crate::solve::SolverOptions;
+use crate::structure::{measure, Honeycomb};
+use crate::surface::Surface;
 
 fn honeycomb() -> (Honeycomb, Connectivity, Surface) {
     let (base, surface) = lifted_hex_patch(Shape::Dome, 600);
@@ -187,7 +187,7 @@ fn subdivision_quadruples_the_cells_and_keeps_angles_and_the_spherical_image() {
     assert!((after.omega_max_deg - before.omega_max_deg).abs() < 1e-9);
     assert!(after.delta_max < 1e-9, "delta_max {}", after.delta_max);
     // Same spherical image: every new axis is an old one, and every old one is still there.
-    let key = |a: &honeycomb::geometry::Vec3| a.to_array().map(|x| x.to_bits());
+    let key = |a: &crate::geometry::Vec3| a.to_array().map(|x| x.to_bits());
     let old: std::collections::HashSet<_> = h.axes.iter().map(key).collect();
     let new: std::collections::HashSet<_> = sub.axes.iter().map(key).collect();
     assert!(
@@ -241,7 +241,7 @@ fn the_reciprocal_structure_has_a_triangle_per_node_and_straight_t_junctions() {
     let s = Surface::from_mesh(&h.base).unwrap();
     let after = measure(&r.honeycomb, &s);
     assert!(after.delta_max < 1e-9, "delta_max {}", after.delta_max);
-    let key = |a: &honeycomb::geometry::Vec3| a.to_array().map(|x| x.to_bits());
+    let key = |a: &crate::geometry::Vec3| a.to_array().map(|x| x.to_bits());
     let old: std::collections::HashSet<_> = h.axes.iter().map(key).collect();
     let new: std::collections::HashSet<_> = r.honeycomb.axes.iter().map(key).collect();
     assert!(new.is_subset(&old));

@@ -1,13 +1,11 @@
 //! Quadrangulation (paper section 4, Figs. 1, 11, 17): honeycombs capped by planar quads.
 
-use honeycomb::generate::roof;
-use honeycomb::optimize::{
-    optimize, OptimizeOptions, Optimized, QuadOptions, QuadPattern, Weights,
-};
-use honeycomb::solve::SolverOptions;
-use honeycomb::structure::{face_measures, measure, FaceMeasures, Measures};
-use honeycomb::surface::Surface;
-use honeycomb::Vec3;
+use crate::generate::roof;
+use crate::optimize::{optimize, OptimizeOptions, Optimized, QuadOptions, QuadPattern, Weights};
+use crate::solve::SolverOptions;
+use crate::structure::{face_measures, measure, FaceMeasures, Measures};
+use crate::surface::Surface;
+use crate::Vec3;
 use std::time::Instant;
 
 struct Run {

@@ -1,15 +1,13 @@
 //! `init`: hex base meshes on design surfaces, judged on the meshes it makes.
 
-mod common;
-
-use common::shared_data;
-use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::geometry::Vec3;
-use honeycomb::init::{init, Align, BoundaryMode, CellSize, Flattener, InitOptions, Method};
-use honeycomb::mesh::{validate_base_mesh, PolyMesh};
-use honeycomb::optimize::{optimize, optimize_made_mesh, OptimizeOptions};
-use honeycomb::structure::measure;
-use honeycomb::surface::Surface;
+use super::shared_data;
+use crate::generate::{lifted_hex_patch, Shape};
+use crate::geometry::Vec3;
+use crate::init::{init, Align, BoundaryMode, CellSize, Flattener, InitOptions, Method};
+use crate::mesh::{validate_base_mesh, PolyMesh};
+use crate::optimize::{optimize, optimize_made_mesh, OptimizeOptions};
+use crate::structure::measure;
+use crate::surface::Surface;
 
 fn options(cells: usize) -> InitOptions {
     InitOptions::new(CellSize::Cells(cells))
@@ -22,7 +20,7 @@ fn surface(shape: Shape) -> PolyMesh {
 
 /// What every base mesh must be: valid for `optimize` (manifold, valence 2 or 3), on S, with
 /// nearly all interior cells hexagons of nearly one size.
-fn assert_good(base: &PolyMesh, s: &PolyMesh, report: &honeycomb::init::InitReport, what: &str) {
+fn assert_good(base: &PolyMesh, s: &PolyMesh, report: &crate::init::InitReport, what: &str) {
     validate_base_mesh(base).unwrap_or_else(|e| panic!("{what}: {e}"));
     assert!(report.interior_hexagon_share >= 0.95, "{what}: {report:?}");
     assert!(
@@ -409,7 +407,7 @@ fn hex_meshes_on_the_shared_surfaces() {
         return;
     };
     for file in FLATTENABLE.into_iter().chain(["camelhead.off"]) {
-        let s = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
+        let s = crate::mesh::read_mesh(&data.join(file)).unwrap().mesh;
         for cells in [750, 4000] {
             let made = init(&s, &options(cells)).unwrap();
             let r = &made.report;
@@ -446,7 +444,7 @@ fn pipeline_on_the_shared_surfaces() {
         return;
     };
     for file in FLATTENABLE.into_iter().filter(|&f| f != "YasIsland.off") {
-        let s = honeycomb::mesh::read_mesh(&data.join(file)).unwrap().mesh;
+        let s = crate::mesh::read_mesh(&data.join(file)).unwrap().mesh;
         let cells = 750;
         let plan_view = InitOptions {
             flattener: Flattener::Project,

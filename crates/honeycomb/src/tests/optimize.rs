@@ -1,11 +1,11 @@
 //! End to end: hex meshes lifted onto analytic surfaces become honeycombs.
 
-use honeycomb::generate::{hex_disk, lifted_hex_patch, radius_for_vertices, HeightField, Shape};
-use honeycomb::mesh::PolyMesh;
-use honeycomb::optimize::{optimize, without_cells, OptimizeOptions, WallNormals, Weights};
-use honeycomb::solve::SolverOptions;
-use honeycomb::structure::{measure, quad_planarity, Measures};
-use honeycomb::surface::Surface;
+use crate::generate::{hex_disk, lifted_hex_patch, radius_for_vertices, HeightField, Shape};
+use crate::mesh::PolyMesh;
+use crate::optimize::{optimize, without_cells, OptimizeOptions, WallNormals, Weights};
+use crate::solve::SolverOptions;
+use crate::structure::{measure, quad_planarity, Measures};
+use crate::surface::Surface;
 
 fn run(shape: Shape, vertices: usize) -> (Measures, usize) {
     let (base, surface) = lifted_hex_patch(shape, vertices);
@@ -92,7 +92,7 @@ fn the_initial_mesh_is_far_from_a_honeycomb() {
 
 #[test]
 fn planarity_measures_the_distance_of_the_diagonals() {
-    use honeycomb::geometry::Vec3;
+    use crate::geometry::Vec3;
     let quad = [
         Vec3::new(0.0, 0.0, 0.0),
         Vec3::new(1.0, 0.0, 0.0),
