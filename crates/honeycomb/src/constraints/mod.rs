@@ -26,7 +26,7 @@ pub use edge_vectors::EdgeVectors;
 pub use layout::Layout;
 pub use min_edge_length::MinEdgeLength;
 pub use node_angle::{Node2, Node3};
-pub use node_orientation::NodeOrientation;
+pub use node_orientation::{NodeOrientation, OrientationRow};
 pub use normalization::Normalization;
 pub use opposite_walls::OppositeWalls;
 pub use orthogonal_difference::OrthogonalDifference;
