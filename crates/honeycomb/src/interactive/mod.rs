@@ -23,6 +23,7 @@ use crate::optimize::{
 use crate::solve::{GuidedProjection, IterationInfo, SolveState, SolverOptions};
 use crate::structure::{measure, node_axes, Honeycomb, Measures};
 use crate::surface::Surface;
+use std::sync::Arc;
 
 /// What an editor works on: the base mesh and the design surface S, in the normalized frame
 /// (mean edge length 1) for the solver and in model units for the measures.
@@ -31,8 +32,8 @@ pub struct Workspace {
     /// M at the start, normalized.
     pub base: PolyMesh,
     pub conn: Connectivity,
-    /// S, normalized (the solver's).
-    pub surface: Surface,
+    /// S, normalized (the solver's), shared with the session's families.
+    pub surface: Arc<Surface>,
     /// S in model units (the measures' and the display's).
     pub model_surface: Surface,
     /// Wall normals to start from (a loaded structure's), as the solver orients them.
@@ -77,7 +78,7 @@ impl Workspace {
             depths: vec![thickness; base.vertices.len()],
             base: normalized,
             conn,
-            surface,
+            surface: Arc::new(surface),
             model_surface,
             normals,
         })
@@ -217,11 +218,12 @@ pub struct View {
     pub measures: Measures,
 }
 
-pub struct EditSession<'a> {
-    ws: &'a Workspace,
+/// Owns its data (the workspace, shared): a session can be kept anywhere, as long as needed.
+pub struct EditSession {
+    ws: Arc<Workspace>,
     options: SessionOptions,
     layout: Layout,
-    solver: GuidedProjection<'a>,
+    solver: GuidedProjection<'static>,
     solver_options: SolverOptions,
     x: Vec<f64>,
     depths: Vec<f64>,
@@ -238,10 +240,11 @@ pub struct EditSession<'a> {
     stroke_start: Option<StrokeStart>,
 }
 
-impl<'a> EditSession<'a> {
+impl EditSession {
     /// Solves the workspace into a honeycomb, then sets up the editing solver (its symbolic
-    /// factorization is the only one of the session).
-    pub fn new(ws: &'a Workspace, options: SessionOptions) -> Result<EditSession<'a>> {
+    /// factorization is the only one of the session). `ws` is the session's own or shared.
+    pub fn new(ws: impl Into<Arc<Workspace>>, options: SessionOptions) -> Result<EditSession> {
+        let ws: Arc<Workspace> = ws.into();
         options.weights.validate()?;
         options.first_weights.validate()?;
         let (base, conn) = (&ws.base, &ws.conn);
@@ -257,7 +260,7 @@ impl<'a> EditSession<'a> {
         let first = ProblemBuilder::new(
             base,
             conn,
-            &ws.surface,
+            &*ws.surface,
             &options.first_weights,
             Walls::Consistency,
             &base.vertices,
@@ -280,7 +283,7 @@ impl<'a> EditSession<'a> {
         let mut edits = ProblemBuilder::new(
             base,
             conn,
-            &ws.surface,
+            Arc::clone(&ws.surface),
             &options.weights,
             Walls::Planes,
             &vertices,
@@ -327,7 +330,7 @@ impl<'a> EditSession<'a> {
     }
 
     pub fn workspace(&self) -> &Workspace {
-        self.ws
+        &self.ws
     }
 
     /// Applies an edit. Edits with the same `stroke` (one drag gesture) share an undo step.
