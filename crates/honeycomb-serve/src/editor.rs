@@ -65,7 +65,8 @@ pub struct Editor {
 /// What the editor edits: the workspace, how the page names it, and the input it came from
 /// (which a remake makes again).
 struct Current {
-    ws: Workspace,
+    /// Shared with the session made from it.
+    ws: Arc<Workspace>,
     label: String,
     source: Source,
     thickness: Option<f64>,
@@ -125,7 +126,7 @@ impl Editor {
     ) {
         let mut ready = Some(ready);
         let mut current = Current {
-            ws: first,
+            ws: Arc::new(first),
             label: source.label(),
             source,
             thickness,
@@ -133,7 +134,7 @@ impl Editor {
         // The workspace before a load, to go back to when the loaded one cannot be solved.
         let mut previous: Option<Current> = None;
         loop {
-            let outcome = match EditSession::new(&current.ws, self.options.clone()) {
+            let outcome = match EditSession::new(Arc::clone(&current.ws), self.options.clone()) {
                 Ok(mut session) => {
                     if let Some(r) = ready.take() {
                         let _ = r.send(Ok(()));
@@ -311,7 +312,7 @@ impl Editor {
                 match loaded {
                     Ok((ws, source)) => {
                         return Some(Next::Load(Box::new(Current {
-                            ws,
+                            ws: Arc::new(ws),
                             label: name,
                             source,
                             thickness: None,
@@ -423,7 +424,7 @@ fn remake(
     let thickness = thickness.or(current.thickness);
     let (ws, notes) = source.workspace_with_notes(thickness)?;
     let next = Current {
-        ws,
+        ws: Arc::new(ws),
         label: source.label(),
         source,
         thickness,

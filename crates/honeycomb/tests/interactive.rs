@@ -39,10 +39,17 @@ fn largest_move(a: &Honeycomb, b: &Honeycomb) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// A session owns its data (no borrowed workspace): it can be kept anywhere, by a thread or
+/// a binding's object, for as long as it is needed.
+#[test]
+fn a_session_owns_its_data() {
+    fn owned<T: Send + 'static>() {}
+    owned::<EditSession>();
+}
+
 #[test]
 fn first_solve_makes_a_honeycomb() {
-    let ws = dome();
-    let s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     assert!(!s.solving());
     let m = s.view().measures;
     assert!(m.omega_max_deg < 0.01, "omega {}", m.omega_max_deg);
@@ -52,8 +59,7 @@ fn first_solve_makes_a_honeycomb() {
 
 #[test]
 fn turning_an_axis_spreads_and_stays_a_honeycomb() {
-    let ws = dome();
-    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let mut s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     s.finish().unwrap();
     let before = s.view().honeycomb;
     let v = middle(&before);
@@ -100,8 +106,7 @@ fn turning_an_axis_spreads_and_stays_a_honeycomb() {
 
 #[test]
 fn moving_a_vertex_follows_the_pointer_on_s() {
-    let ws = dome();
-    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let mut s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     s.finish().unwrap();
     let before = s.view();
     let v = middle(&before.honeycomb);
@@ -131,8 +136,7 @@ fn moving_a_vertex_follows_the_pointer_on_s() {
 
 #[test]
 fn sliding_along_the_axis_keeps_the_walls() {
-    let ws = dome();
-    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let mut s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     s.finish().unwrap();
     let before = s.view();
     let v = middle(&before.honeycomb);
@@ -179,8 +183,7 @@ fn sliding_along_the_axis_keeps_the_walls() {
 
 #[test]
 fn a_newer_edit_replaces_a_running_one() {
-    let ws = dome();
-    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let mut s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     s.finish().unwrap();
     let h = s.view().honeycomb;
     let v = middle(&h);
@@ -206,8 +209,7 @@ fn a_newer_edit_replaces_a_running_one() {
 
 #[test]
 fn nonsense_edits_are_refused() {
-    let ws = dome();
-    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let mut s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     let n = s.num_vertices();
     let bad = [
         Edit::MoveVertex {
@@ -250,8 +252,7 @@ fn nonsense_edits_are_refused() {
 #[test]
 fn a_long_vertex_drag_bends_the_cells_instead_of_folding_them() {
     use honeycomb::interactive::MOVE_PER_RING;
-    let ws = dome();
-    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let mut s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     let before = s.view();
     let v = middle(&before.honeycomb);
     let edge = before.measures.mean_edge_length;
@@ -293,8 +294,7 @@ fn a_long_vertex_drag_bends_the_cells_instead_of_folding_them() {
 #[test]
 fn a_slide_stops_at_the_limit_off_s_and_says_so() {
     use honeycomb::interactive::MAX_SLIDE_OFF_S;
-    let ws = dome();
-    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let mut s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     let before = s.view();
     let v = middle(&before.honeycomb);
     let edge = before.measures.mean_edge_length;
@@ -321,8 +321,7 @@ fn a_slide_stops_at_the_limit_off_s_and_says_so() {
 /// Undo steps remember who made them (an editor's pages undo only their own).
 #[test]
 fn undo_steps_know_their_author() {
-    let ws = dome();
-    let mut s = EditSession::new(&ws, SessionOptions::default()).unwrap();
+    let mut s = EditSession::new(dome(), SessionOptions::default()).unwrap();
     let slide = Edit::SlideVertex {
         vertex: 3,
         distance: 0.01,

@@ -7,18 +7,20 @@ use super::layout::{put, triple, Layout};
 use crate::geometry::Vec3;
 use crate::solve::Constraint;
 use crate::surface::Surface;
+use std::ops::Deref;
 
-pub struct BoundaryCurve<'a> {
+/// `S` holds S as for [`super::Closeness`].
+pub struct BoundaryCurve<S> {
     pub layout: Layout,
-    pub surface: &'a Surface,
+    pub surface: S,
     pub weight: f64,
     pub vertices: Vec<usize>,
     /// Per constrained vertex: (foot point, u_1, u_2).
     frames: Vec<(Vec3, Vec3, Vec3)>,
 }
 
-impl<'a> BoundaryCurve<'a> {
-    pub fn new(layout: Layout, surface: &'a Surface, weight: f64, vertices: Vec<usize>) -> Self {
+impl<S: Deref<Target = Surface>> BoundaryCurve<S> {
+    pub fn new(layout: Layout, surface: S, weight: f64, vertices: Vec<usize>) -> Self {
         let frames = vec![(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO); vertices.len()];
         BoundaryCurve {
             layout,
@@ -30,7 +32,7 @@ impl<'a> BoundaryCurve<'a> {
     }
 }
 
-impl Constraint for BoundaryCurve<'_> {
+impl<S: Deref<Target = Surface> + Send + Sync> Constraint for BoundaryCurve<S> {
     fn name(&self) -> &str {
         "boundary_curve"
     }

@@ -11,22 +11,25 @@ use crate::geometry::Vec3;
 use crate::parallel::both;
 use crate::solve::Constraint;
 use crate::surface::Surface;
+use std::ops::Deref;
 
 /// From this many vertices on, closest points are found on two threads (a query takes about a
 /// microsecond, starting a thread some tens).
 const PARALLEL_FROM: usize = 1000;
 
-pub struct Closeness<'a> {
+/// `S` is how the family holds S: borrowed for one solve, shared (`Arc`) by a session that
+/// owns its data.
+pub struct Closeness<S> {
     pub layout: Layout,
-    pub surface: &'a Surface,
+    pub surface: S,
     pub weight: f64,
     /// Per vertex: closest point, unit normal and, beyond S's boundary, the unit outward
     /// offset in the tangent plane (else zero), at the last refresh.
     foot: Vec<(Vec3, Vec3, Vec3)>,
 }
 
-impl<'a> Closeness<'a> {
-    pub fn new(layout: Layout, surface: &'a Surface, weight: f64) -> Self {
+impl<S: Deref<Target = Surface>> Closeness<S> {
+    pub fn new(layout: Layout, surface: S, weight: f64) -> Self {
         Closeness {
             layout,
             surface,
@@ -36,7 +39,7 @@ impl<'a> Closeness<'a> {
     }
 }
 
-impl Constraint for Closeness<'_> {
+impl<S: Deref<Target = Surface> + Send + Sync> Constraint for Closeness<S> {
     fn name(&self) -> &str {
         "closeness"
     }
@@ -53,7 +56,7 @@ impl Constraint for Closeness<'_> {
         triple(vars, self.layout.vertex(row / 2));
     }
     fn refresh(&mut self, x: &[f64]) {
-        let (layout, surface) = (self.layout, self.surface);
+        let (layout, surface) = (self.layout, &*self.surface);
         // Vertices `first..` of `feet`.
         let find = |feet: &mut [(Vec3, Vec3, Vec3)], first: usize| {
             for (k, foot) in feet.iter_mut().enumerate() {

@@ -7,8 +7,8 @@ use crate::geometry::Vec3;
 use crate::mesh::Connectivity;
 use crate::mesh::PolyMesh;
 use crate::optimize::{
-    families, initial_normals, AxesOptions, Frame, OptimizeOptions, ParallelOptions, Problem,
-    QuadOptions, QuadPattern, Weights,
+    initial_normals, AxesOptions, Frame, OptimizeOptions, ParallelOptions, Problem, ProblemBuilder,
+    QuadOptions, QuadPattern, WallRows, Weights,
 };
 use crate::solve::{jacobian_fd_error, Constraint};
 use crate::surface::Surface;
@@ -52,20 +52,27 @@ fn assert_families_match(families: &mut [Box<dyn Constraint + '_>], x: &[f64], e
 #[test]
 fn every_family_matches_finite_differences() {
     let (_, mesh, surface, conn) = saddle();
-    let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
     let normals = initial_normals(&mesh, &conn, &surface);
-    let mut x = layout.pack(&mesh.vertices, &normals);
-    let min_edge = crate::optimize::min_edge_family(&mesh, &conn, 0.9);
-    x.extend(min_edge.initial_dummies(&mesh.vertices));
-    for (i, xi) in x.iter_mut().enumerate() {
-        *xi += 0.05 * jitter(i);
-    }
     let weights = Weights {
         guide: 1.0,
         ..Weights::default()
     };
-    let mut fams = families(&mesh, &conn, &surface, &weights);
-    fams.push(Box::new(min_edge));
+    let walls = WallRows::Consistency;
+    let mut problem = ProblemBuilder::new(
+        &mesh,
+        &conn,
+        &surface,
+        &weights,
+        walls,
+        &mesh.vertices,
+        &normals,
+    );
+    problem.min_edge_length(0.9);
+    let (unknowns, mut fams) = problem.finish();
+    let (mut x, _) = unknowns.into_parts();
+    for (i, xi) in x.iter_mut().enumerate() {
+        *xi += 0.05 * jitter(i);
+    }
     let expected = [
         "normalization",
         "wall_consistency",

@@ -39,6 +39,7 @@ impl Layout {
         Vec3::from_slice(&x[self.normal(e)..])
     }
 
+    #[cfg(test)]
     /// Packs positions and normals into a solver vector.
     pub fn pack(&self, vertices: &[Vec3], normals: &[Vec3]) -> Vec<f64> {
         let mut x = Vec::with_capacity(self.len());

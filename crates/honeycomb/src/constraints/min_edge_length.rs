@@ -58,24 +58,22 @@ impl MinEdgeLength {
         x[self.dummy_start + e] + self.seat[e]
     }
 
-    /// Free dummies for the edges of `vertices` (see `free_dummy`; edges shorter than L have
-    /// theirs held at zero by the first refresh).
-    pub fn initial_dummies(&self, vertices: &[Vec3]) -> Vec<f64> {
-        self.edges
+    /// Free dummies for `edges` of `vertices` and a minimum `length` (see `free_dummy`; edges
+    /// shorter than L have theirs held at zero by the first refresh). Computed before the
+    /// family is made: they are the block whose start it is given.
+    pub fn initial_dummies(edges: &[[usize; 2]], length: f64, vertices: &[Vec3]) -> Vec<f64> {
+        edges
             .iter()
-            .map(|&[a, b]| self.free_dummy((vertices[a] - vertices[b]).norm_squared()))
+            .map(|&[a, b]| free_dummy(length, (vertices[a] - vertices[b]).norm_squared()))
             .collect()
     }
+}
 
-    /// The dummy of a free edge of squared length `l2`: the one that meets the row, but never
-    /// below L/10. The dummy enters squared, so near 0 its derivative vanishes and an edge just
-    /// longer than L would be held there instead of being free to move.
-    fn free_dummy(&self, l2: f64) -> f64 {
-        (l2 - self.length * self.length)
-            .max(0.0)
-            .sqrt()
-            .max(0.1 * self.length)
-    }
+/// The dummy of a free edge of squared length `l2` against a minimum `length`: the one that
+/// meets the row, but never below L/10. The dummy enters squared, so near 0 its derivative
+/// vanishes and an edge just longer than L would be held there instead of being free to move.
+fn free_dummy(length: f64, l2: f64) -> f64 {
+    (l2 - length * length).max(0.0).sqrt().max(0.1 * length)
 }
 
 impl Constraint for MinEdgeLength {
@@ -116,7 +114,7 @@ impl Constraint for MinEdgeLength {
                 0.0
             } else if self.held[e] {
                 self.held[e] = false;
-                self.free_dummy(l2)
+                free_dummy(self.length, l2)
             } else {
                 continue;
             };
@@ -172,7 +170,11 @@ mod tests {
         let family = MinEdgeLength::new(layout, vec![[0, 1]], 1.0, layout.len(), 1.0);
         let vertices = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(2.0, 0.0, 0.0)];
         let mut x = layout.pack(&vertices, &[Vec3::new(0.0, 0.0, 1.0)]);
-        x.extend(family.initial_dummies(&vertices));
+        x.extend(MinEdgeLength::initial_dummies(
+            &family.edges,
+            1.0,
+            &vertices,
+        ));
         let families: Vec<Box<dyn Constraint>> =
             vec![Box::new(Together { layout }), Box::new(family)];
         let mut solver = GuidedProjection::new(x.len(), families).unwrap();

@@ -13,11 +13,13 @@
 use super::layout::{put, triple, Layout};
 use crate::solve::Constraint;
 
+/// One row: (edge of the wall, its sign seen from the node, the node i, the other neighbour
+/// k, the sign sigma of `n_ij . (v_k - v_i)` to keep).
+pub type OrientationRow = (usize, f64, usize, usize, f64);
+
 pub struct NodeOrientation {
     pub layout: Layout,
-    /// Per row: (edge of the wall, its sign seen from the node, the node i, the other
-    /// neighbour k, the sign sigma of `n_ij . (v_k - v_i)` to keep).
-    pub rows: Vec<(usize, f64, usize, usize, f64)>,
+    pub rows: Vec<OrientationRow>,
     /// Index of the first dummy in the unknown vector.
     pub dummy_start: usize,
     pub weight: f64,
@@ -26,14 +28,12 @@ pub struct NodeOrientation {
 impl NodeOrientation {
     /// One row per wall of each node in `nodes` (its walls as (edge, sign seen from the node)),
     /// against the other wall's edge; the signs to keep are read off `x`.
-    pub fn new(
+    pub fn rows(
         layout: Layout,
         edges: &[[usize; 2]],
         nodes: &[&[(usize, f64)]],
         x: &[f64],
-        dummy_start: usize,
-        weight: f64,
-    ) -> NodeOrientation {
+    ) -> Vec<OrientationRow> {
         let far_end = |(e, s): (usize, f64)| if s > 0.0 { edges[e][1] } else { edges[e][0] };
         let mut rows = Vec::new();
         for walls in nodes {
@@ -48,27 +48,21 @@ impl NodeOrientation {
                 rows.push((e, s, i, k, if side < 0.0 { -1.0 } else { 1.0 }));
             }
         }
-        NodeOrientation {
-            layout,
-            rows,
-            dummy_start,
-            weight,
-        }
+        rows
     }
 
-    /// Dummies that satisfy the rows at `x`, kept away from 0 (where their derivative vanishes).
-    pub fn initial_dummies(&self, x: &[f64]) -> Vec<f64> {
-        (0..self.rows.len())
-            .map(|r| self.side(x, r).max(0.0).sqrt().max(0.1))
+    /// Dummies that satisfy `rows` at `x`, kept away from 0 (where their derivative vanishes).
+    /// Computed before the family is made: they are the block whose start it is given.
+    pub fn initial_dummies(layout: Layout, rows: &[OrientationRow], x: &[f64]) -> Vec<f64> {
+        rows.iter()
+            .map(|&row| side(layout, row, x).max(0.0).sqrt().max(0.1))
             .collect()
     }
+}
 
-    /// `sigma n_ij . (v_k - v_i)` for row `r`.
-    fn side(&self, x: &[f64], r: usize) -> f64 {
-        let (e, s, i, k, sigma) = self.rows[r];
-        let l = &self.layout;
-        sigma * s * l.normal_at(x, e).dot(l.vertex_at(x, k) - l.vertex_at(x, i))
-    }
+/// `sigma n_ij . (v_k - v_i)` for `row`.
+fn side(l: Layout, (e, s, i, k, sigma): OrientationRow, x: &[f64]) -> f64 {
+    sigma * s * l.normal_at(x, e).dot(l.vertex_at(x, k) - l.vertex_at(x, i))
 }
 
 impl Constraint for NodeOrientation {

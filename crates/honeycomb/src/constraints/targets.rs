@@ -21,6 +21,7 @@ impl SharedTargets {
         SharedTargets(Arc::new(RwLock::new(vec![None; num_vertices])))
     }
 
+    #[cfg(test)]
     pub fn get(&self) -> Vec<Option<Vec3>> {
         self.read().clone()
     }

@@ -9,13 +9,9 @@ pub struct WallConsistency {
     pub weight: f64,
 }
 
-impl WallConsistency {
-    pub const NAME: &'static str = "wall_consistency";
-}
-
 impl Constraint for WallConsistency {
     fn name(&self) -> &str {
-        Self::NAME
+        "wall_consistency"
     }
     fn weight(&self) -> f64 {
         self.weight

@@ -18,11 +18,12 @@ use crate::error::{Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
 use crate::optimize::{
-    block_positions, check_thickness, families, initial_normals, use_wall_planes, Frame, Weights,
+    block_positions, check_thickness, initial_normals, Frame, ProblemBuilder, WallRows, Weights,
 };
 use crate::solve::{GuidedProjection, IterationInfo, SolveState, SolverOptions};
 use crate::structure::{measure, node_axes, Honeycomb, Measures};
 use crate::surface::Surface;
+use std::sync::Arc;
 
 /// What an editor works on: the base mesh and the design surface S, in the normalized frame
 /// (mean edge length 1) for the solver and in model units for the measures.
@@ -31,8 +32,8 @@ pub struct Workspace {
     /// M at the start, normalized.
     pub base: PolyMesh,
     pub conn: Connectivity,
-    /// S, normalized (the solver's).
-    pub surface: Surface,
+    /// S, normalized (the solver's), shared with the session's families.
+    pub surface: Arc<Surface>,
     /// S in model units (the measures' and the display's).
     pub model_surface: Surface,
     /// Wall normals to start from (a loaded structure's), as the solver orients them.
@@ -77,7 +78,7 @@ impl Workspace {
             depths: vec![thickness; base.vertices.len()],
             base: normalized,
             conn,
-            surface,
+            surface: Arc::new(surface),
             model_surface,
             normals,
         })
@@ -217,11 +218,12 @@ pub struct View {
     pub measures: Measures,
 }
 
-pub struct EditSession<'a> {
-    ws: &'a Workspace,
+/// Owns its data (the workspace, shared): a session can be kept anywhere, as long as needed.
+pub struct EditSession {
+    ws: Arc<Workspace>,
     options: SessionOptions,
     layout: Layout,
-    solver: GuidedProjection<'a>,
+    solver: GuidedProjection<'static>,
     solver_options: SolverOptions,
     x: Vec<f64>,
     depths: Vec<f64>,
@@ -238,29 +240,16 @@ pub struct EditSession<'a> {
     stroke_start: Option<StrokeStart>,
 }
 
-impl<'a> EditSession<'a> {
+impl EditSession {
     /// Solves the workspace into a honeycomb, then sets up the editing solver (its symbolic
-    /// factorization is the only one of the session).
-    pub fn new(ws: &'a Workspace, options: SessionOptions) -> Result<EditSession<'a>> {
+    /// factorization is the only one of the session). `ws` is the session's own or shared.
+    pub fn new(ws: impl Into<Arc<Workspace>>, options: SessionOptions) -> Result<EditSession> {
+        let ws: Arc<Workspace> = ws.into();
         options.weights.validate()?;
         options.first_weights.validate()?;
-        let nv = ws.base.vertices.len();
-        let layout = Layout::new(nv, ws.conn.num_edges());
-        let positions = SharedTargets::new(nv);
-        let axes = SharedTargets::new(nv);
-        let mut fams = families(&ws.base, &ws.conn, &ws.surface, &options.weights);
-        fams.push(Box::new(VertexTargets {
-            layout,
-            targets: positions.clone(),
-            weight: options.vertex_weight,
-        }));
-        fams.push(Box::new(AxisTargets::new(
-            layout,
-            &ws.conn.edges,
-            axes.clone(),
-            options.axis_weight,
-        )));
-        let mut x = layout.pack(&ws.base.vertices, &ws.normals);
+        let (base, conn) = (&ws.base, &ws.conn);
+        let nv = base.vertices.len();
+        let layout = Layout::new(nv, conn.num_edges());
         let solver_options = SolverOptions {
             max_iterations: options.first_iterations,
             eps: options.eps,
@@ -268,8 +257,18 @@ impl<'a> EditSession<'a> {
             ..SolverOptions::default()
         };
         // The first solve as `optimize` does it (a loaded honeycomb converges at once).
-        let first = families(&ws.base, &ws.conn, &ws.surface, &options.first_weights);
-        let blocks = block_positions(&ws.base, &ws.conn, x.len());
+        let first = ProblemBuilder::new(
+            base,
+            conn,
+            &*ws.surface,
+            &options.first_weights,
+            WallRows::Consistency,
+            &base.vertices,
+            &ws.normals,
+        );
+        let (unknowns, first) = first.finish();
+        let (mut x, _) = unknowns.into_parts();
+        let blocks = block_positions(base, conn, x.len());
         GuidedProjection::with_positions(x.len(), first, Some(&blocks))?.solve(
             &mut x,
             &solver_options,
@@ -277,18 +276,38 @@ impl<'a> EditSession<'a> {
         )?;
         // The edits' walls are planes with offsets, so the solver eliminates the vertices
         // before it factors: a step at 8.8k vertices then factors half the operations.
-        use_wall_planes(
-            &mut fams,
-            &ws.base,
-            &ws.conn,
-            &mut x,
-            options.weights.consistency,
+        let vertices: Vec<Vec3> = (0..nv).map(|v| layout.vertex_at(&x, v)).collect();
+        let normals: Vec<Vec3> = (0..layout.num_edges)
+            .map(|e| layout.normal_at(&x, e))
+            .collect();
+        let mut edits = ProblemBuilder::new(
+            base,
+            conn,
+            Arc::clone(&ws.surface),
+            &options.weights,
+            WallRows::Planes,
+            &vertices,
+            &normals,
         );
-        let blocks = block_positions(&ws.base, &ws.conn, x.len());
+        let positions = SharedTargets::new(nv);
+        let axes = SharedTargets::new(nv);
+        edits.push(VertexTargets {
+            layout,
+            targets: positions.clone(),
+            weight: options.vertex_weight,
+        });
+        edits.push(AxisTargets::new(
+            layout,
+            &conn.edges,
+            axes.clone(),
+            options.axis_weight,
+        ));
+        let (unknowns, families) = edits.finish();
+        let (x, _) = unknowns.into_parts();
+        let blocks = block_positions(base, conn, x.len());
         let vertices: Vec<usize> = (0..nv).collect();
-        let solver = GuidedProjection::eliminating(x.len(), fams, Some(&blocks), &vertices)?;
+        let solver = GuidedProjection::eliminating(x.len(), families, Some(&blocks), &vertices)?;
         Ok(EditSession {
-            ws,
             layout,
             solver,
             x,
@@ -302,6 +321,7 @@ impl<'a> EditSession<'a> {
             stroke_start: None,
             solver_options,
             options,
+            ws,
         })
     }
 
@@ -310,7 +330,7 @@ impl<'a> EditSession<'a> {
     }
 
     pub fn workspace(&self) -> &Workspace {
-        self.ws
+        &self.ws
     }
 
     /// Applies an edit. Edits with the same `stroke` (one drag gesture) share an undo step.

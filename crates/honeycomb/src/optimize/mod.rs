@@ -6,6 +6,7 @@ mod frame;
 mod made_mesh;
 mod problem;
 mod quads;
+mod unknowns;
 mod variants;
 mod weights;
 
@@ -14,16 +15,18 @@ pub use broken_cells::{
     without_cells, Settled, MAX_DROPPED_SHARE,
 };
 pub use frame::Frame;
-pub use made_mesh::{optimize_made_mesh, Attempt, MadeMeshResult};
-pub use problem::{
-    block_positions, boundary_vertices_on_surface_boundary, families, initial_normals,
-    min_edge_family, node_walls,
-};
-pub use quads::{QuadOptions, QuadPattern};
+pub use made_mesh::{optimize_made_mesh, Attempt};
+pub use problem::{block_positions, initial_normals, node_walls, ProblemBuilder, WallRows};
+#[cfg(test)]
+pub use problem::{boundary_vertices_on_surface_boundary, families};
+pub use quads::QuadOptions;
+#[cfg(test)]
+pub use quads::QuadPattern;
+#[cfg(test)]
+pub use unknowns::Block;
 pub use variants::{shading_axes, unit_light, AxesOptions, ParallelOptions};
 pub use weights::Weights;
 
-pub(crate) use problem::use_wall_planes;
 pub(crate) use variants::check_weight;
 
 use crate::constraints::{
@@ -126,6 +129,7 @@ pub const SECOND_TRY_MIN_EDGE: f64 = 0.3;
 pub const SECOND_TRY_ITERATIONS: usize = 200;
 
 impl OptimizeOptions {
+    #[cfg(test)]
     /// The default options with wall normals as differences of cell points.
     pub fn cell_points() -> OptimizeOptions {
         OptimizeOptions {
@@ -135,6 +139,7 @@ impl OptimizeOptions {
     }
 
     /// The default options with one unknown normal per edge.
+    #[cfg(test)]
     pub fn per_edge() -> OptimizeOptions {
         OptimizeOptions {
             wall_normals: WallNormals::PerEdge,
@@ -239,6 +244,9 @@ pub struct Problem<'a> {
     pub layout: Layout,
     /// Initial unknowns: the honeycomb's, then each variant's block.
     pub x: Vec<f64>,
+    /// Where each block of `x` lies, in order.
+    #[cfg(test)]
+    pub blocks: Vec<Block>,
     pub families: Vec<Box<dyn Constraint + 'a>>,
     /// Where M' lives, with parallel meshes.
     pub offset: Option<OffsetBlock>,
@@ -256,7 +264,6 @@ impl<'a> Problem<'a> {
         weights: &Weights,
         frame: &Frame,
     ) -> Problem<'a> {
-        let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
         let mut normals = initial_normals(mesh, conn, surface);
         if let Some(given) = options
             .initial_normals
@@ -282,13 +289,23 @@ impl<'a> Problem<'a> {
                 }
             }
         }
-        let mut x = layout.pack(&mesh.vertices, &normals);
-        let mut families = families(mesh, conn, surface, weights);
+        // With cell points no row may couple two vertices (see `WallRows::Planes`).
+        let walls = match options.wall_normals {
+            WallNormals::CellPoints => WallRows::Planes,
+            WallNormals::PerEdge | WallNormals::Auto => WallRows::Consistency,
+        };
+        let mut problem = ProblemBuilder::new(
+            mesh,
+            conn,
+            surface,
+            weights,
+            walls,
+            &mesh.vertices,
+            &normals,
+        );
+        let layout = problem.layout();
         if let Some(length) = options.min_edge {
-            let family = min_edge_family(mesh, conn, length / frame.unit);
-            debug_assert_eq!(family.dummy_start, x.len());
-            x.extend(family.initial_dummies(&mesh.vertices));
-            families.push(Box::new(family));
+            problem.min_edge_length(length / frame.unit);
         }
         // With prescribed axes the walls turn far from where they start, and a node could settle
         // in the mirrored solution (a valence-2 node at 60 degrees, a flipped wall normal): every
@@ -303,10 +320,16 @@ impl<'a> Problem<'a> {
             Vec::new()
         };
         if !guarded.is_empty() {
-            let guard =
-                NodeOrientation::new(layout, &conn.edges, &guarded, &x, x.len(), weights.angle);
-            x.extend(guard.initial_dummies(&x));
-            families.push(Box::new(guard));
+            let x = problem.values();
+            let rows = NodeOrientation::rows(layout, &conn.edges, &guarded, x);
+            let dummies = NodeOrientation::initial_dummies(layout, &rows, x);
+            let dummies = problem.allocate("orientation_dummies", dummies);
+            problem.push(NodeOrientation {
+                layout,
+                rows,
+                dummy_start: dummies.start,
+                weight: weights.angle,
+            });
         }
         let mut offset = None;
         if let Some(p) = &options.parallel {
@@ -316,30 +339,31 @@ impl<'a> Problem<'a> {
                 .or(options.thickness)
                 .unwrap_or(DEFAULT_THICKNESS * frame.unit)
                 / frame.unit;
-            let block = OffsetBlock { start: x.len() };
-            for &v in &mesh.vertices {
-                x.extend_from_slice(&(v + surface.normal_at(v) * depth).to_array());
-            }
-            families.push(Box::new(OffsetOnAxis {
+            let moved =
+                (mesh.vertices.iter()).flat_map(|&v| (v + surface.normal_at(v) * depth).to_array());
+            let block = OffsetBlock {
+                start: problem.allocate("offset_vertices", moved).start,
+            };
+            problem.push(OffsetOnAxis {
                 layout,
                 offset: block,
                 edges: conn.edges.clone(),
                 weight: weights.consistency,
-            }));
-            families.push(Box::new(EdgeParallelity {
+            });
+            problem.push(EdgeParallelity {
                 layout,
                 offset: block,
                 edges: conn.edges.clone(),
                 weight: p.weight,
-            }));
+            });
             if let Some(c) = p.depth {
                 if p.depth_weight > 0.0 {
-                    families.push(Box::new(ConstantDepth {
+                    problem.push(ConstantDepth {
                         layout,
                         offset: block,
                         depth: c / frame.unit,
                         weight: p.depth_weight,
-                    }));
+                    });
                 }
             }
             offset = Some(block);
@@ -354,32 +378,24 @@ impl<'a> Problem<'a> {
                     }
                 }
             }
-            families.push(Box::new(PrescribedAxes {
+            problem.push(PrescribedAxes {
                 layout,
                 ends,
                 weight: a.weight,
                 role: Role::Condition,
-            }));
+            });
         }
         let quad_cover = options.quads.as_ref().map(|q| {
             let w_norm = weights.normalization();
-            quads::add_quads(
-                mesh,
-                conn,
-                surface,
-                q,
-                layout,
-                w_norm,
-                &mut x,
-                &mut families,
-            )
+            quads::add_quads(mesh, conn, surface, q, w_norm, &mut problem)
         });
-        if options.wall_normals == WallNormals::CellPoints {
-            use_wall_planes(&mut families, mesh, conn, &mut x, weights.consistency);
-        }
+        let (unknowns, families) = problem.finish();
+        let (x, _blocks) = unknowns.into_parts();
         Problem {
             layout,
             x,
+            #[cfg(test)]
+            blocks: _blocks,
             families,
             offset,
             quads: quad_cover,
@@ -419,7 +435,7 @@ pub fn optimize(
     let solve = if options.wall_normals == WallNormals::CellPoints {
         let d = dual_normals::dual_normals(&mesh, &conn, layout, &x)?;
         let mut y = d.y;
-        // The vertices' blocks, which no row couples (see `use_wall_planes`).
+        // The vertices' blocks, which no row couples (see `WallRows::Planes`).
         let vertices: Vec<usize> = (0..layout.num_vertices).collect();
         let mut solver = GuidedProjection::with_substitution(
             problem.families,

@@ -1,6 +1,7 @@
-//! Builds the honeycomb's constraint families over a base mesh and a reference surface, both
-//! in the normalized frame.
+//! Builds a honeycomb's problem, its unknowns and constraint families, over a base mesh and a
+//! reference surface, both in the normalized frame.
 
+use super::unknowns::{Block, Unknowns};
 use super::Weights;
 use crate::constraints::{
     BoundaryCurve, Closeness, Layout, MinEdgeLength, Node2, Node3, Normalization, OppositeWalls,
@@ -10,6 +11,7 @@ use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::{Constraint, Role};
 use crate::surface::Surface;
+use std::ops::Deref;
 
 /// Boundary vertices closer than this (normalized units) to S's boundary are kept on it.
 const ON_BOUNDARY: f64 = 0.25;
@@ -75,46 +77,115 @@ fn opposite_wall_pairs(mesh: &PolyMesh, conn: &Connectivity) -> Vec<[(usize, f64
     pairs
 }
 
-/// The minimum-edge-length family for `length` (normalized units), with its dummies placed
-/// right after the honeycomb's unknowns.
-pub fn min_edge_family(mesh: &PolyMesh, conn: &Connectivity, length: f64) -> MinEdgeLength {
-    let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
-    MinEdgeLength::new(layout, conn.edges.clone(), length, layout.len(), 1.0)
+/// What keeps each edge in its wall.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WallRows {
+    /// The wall plane contains the edge, `n_e . (v_a - v_b) = 0` ([`WallConsistency`]).
+    Consistency,
+    /// The wall plane has an offset of its own and holds both ends ([`WallPlane`]): no row
+    /// couples two vertices, so the solver can eliminate the vertices before it factors.
+    Planes,
 }
 
-/// Puts every edge's wall plane with an offset of its own ([`WallPlane`]) among `families` in
-/// place of the wall consistency: both ends on the wall's plane instead of the edge in it, so
-/// that no row couples two vertices and the solver can eliminate the vertices before it
-/// factors. The offsets, one unknown per edge measured from the edge's midpoint in `x` (laid
-/// out as [`Layout`] first), are appended to `x`.
-pub(crate) fn use_wall_planes<'a>(
-    families: &mut Vec<Box<dyn Constraint + 'a>>,
-    mesh: &PolyMesh,
-    conn: &Connectivity,
-    x: &mut Vec<f64>,
-    weight: f64,
-) {
-    families.retain(|f| f.name() != WallConsistency::NAME);
-    families.push(Box::new(wall_planes(mesh, conn, x, weight)));
+/// A honeycomb's problem in the making: allocates the unknowns block by block ([`Unknowns`])
+/// and gathers the families that read them. The families may borrow for `'a` (S, for one
+/// solve) or own what they read (a session's `Arc<Surface>`).
+pub struct ProblemBuilder<'m, 'a> {
+    mesh: &'m PolyMesh,
+    conn: &'m Connectivity,
+    layout: Layout,
+    walls: WallRows,
+    /// The weight of the wall rows.
+    consistency: f64,
+    unknowns: Unknowns,
+    families: Vec<Box<dyn Constraint + 'a>>,
 }
 
-fn wall_planes(mesh: &PolyMesh, conn: &Connectivity, x: &mut Vec<f64>, weight: f64) -> WallPlane {
-    let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
-    let anchors = conn
-        .edges
-        .iter()
-        .map(|&[a, b]| (layout.vertex_at(x, a) + layout.vertex_at(x, b)) * 0.5)
-        .collect();
-    let planes = WallPlane {
-        layout,
-        edges: conn.edges.clone(),
-        offsets: (x.len()..x.len() + conn.num_edges()).collect(),
-        anchors,
-        weight,
-    };
-    // Each wall starts through its edge's midpoint, which is its anchor: offset 0.
-    x.resize(x.len() + conn.num_edges(), 0.0);
-    planes
+impl<'m, 'a> ProblemBuilder<'m, 'a> {
+    /// The honeycomb's unknowns, starting at `vertices` and wall `normals`, and its families
+    /// ([`families`]) over `mesh` and `surface`, the walls as `walls` says.
+    pub fn new<S>(
+        mesh: &'m PolyMesh,
+        conn: &'m Connectivity,
+        surface: S,
+        weights: &Weights,
+        walls: WallRows,
+        vertices: &[Vec3],
+        normals: &[Vec3],
+    ) -> Self
+    where
+        S: Deref<Target = Surface> + Clone + Send + Sync + 'a,
+    {
+        let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
+        let mut unknowns = Unknowns::new();
+        // In the order `layout` reads them.
+        unknowns.allocate("vertices", vertices.iter().flat_map(|p| p.to_array()));
+        unknowns.allocate("wall_normals", normals.iter().flat_map(|n| n.to_array()));
+        debug_assert_eq!(unknowns.len(), layout.len());
+        ProblemBuilder {
+            mesh,
+            conn,
+            layout,
+            walls,
+            consistency: weights.consistency,
+            unknowns,
+            families: families(mesh, conn, surface, weights, walls),
+        }
+    }
+
+    pub fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    /// The unknowns' starting values so far.
+    pub fn values(&self) -> &[f64] {
+        self.unknowns.values()
+    }
+
+    /// A block of unknowns of a family's own, after those already there.
+    pub fn allocate(&mut self, name: &'static str, values: impl IntoIterator<Item = f64>) -> Block {
+        self.unknowns.allocate(name, values)
+    }
+
+    pub fn push(&mut self, family: impl Constraint + 'a) {
+        self.families.push(Box::new(family));
+    }
+
+    /// Every edge at least `length` (normalized units) long, by one dummy per edge.
+    pub fn min_edge_length(&mut self, length: f64) {
+        let edges = self.conn.edges.clone();
+        let dummies = MinEdgeLength::initial_dummies(&edges, length, &self.mesh.vertices);
+        let block = self.allocate("min_edge_dummies", dummies);
+        self.push(MinEdgeLength::new(
+            self.layout,
+            edges,
+            length,
+            block.start,
+            1.0,
+        ));
+    }
+
+    /// The unknowns and the families. With wall planes their offsets (one per edge, measured
+    /// from the edge's midpoint at the start) and rows come last, after every variant's:
+    /// the order in which the solves have been tuned and checked.
+    pub fn finish(mut self) -> (Unknowns, Vec<Box<dyn Constraint + 'a>>) {
+        if self.walls == WallRows::Planes {
+            let (layout, x) = (self.layout, self.unknowns.values());
+            let anchors = (self.conn.edges.iter())
+                .map(|&[a, b]| (layout.vertex_at(x, a) + layout.vertex_at(x, b)) * 0.5)
+                .collect();
+            // Each wall starts through its anchor: offset 0.
+            let offsets = self.allocate("wall_offsets", vec![0.0; self.conn.num_edges()]);
+            self.push(WallPlane {
+                layout,
+                edges: self.conn.edges.clone(),
+                offsets: offsets.range().collect(),
+                anchors,
+                weight: self.consistency,
+            });
+        }
+        (self.unknowns, self.families)
+    }
 }
 
 /// The walls (edge, sign seen from the node) at every node of valence 3 and of valence 2.
@@ -133,43 +204,51 @@ pub fn node_walls(conn: &Connectivity) -> (Vec<[(usize, f64); 3]>, Vec<[(usize, 
     (node3, node2)
 }
 
-pub fn families<'a>(
+/// The honeycomb's families over `mesh` and S (`surface`, borrowed or shared): with
+/// [`WallRows::Planes`] without wall rows, which bring unknowns of their own (see
+/// [`ProblemBuilder::finish`]).
+pub fn families<'a, S>(
     mesh: &PolyMesh,
     conn: &Connectivity,
-    surface: &'a Surface,
+    surface: S,
     weights: &Weights,
-) -> Vec<Box<dyn Constraint + 'a>> {
+    walls: WallRows,
+) -> Vec<Box<dyn Constraint + 'a>>
+where
+    S: Deref<Target = Surface> + Clone + Send + Sync + 'a,
+{
     let layout = Layout::new(mesh.vertices.len(), conn.num_edges());
     let (node3, node2) = node_walls(conn);
-    let mut families: Vec<Box<dyn Constraint + 'a>> = vec![
-        Box::new(Normalization {
-            layout,
-            weight: weights.normalization(),
-        }),
-        Box::new(WallConsistency {
+    let mut families: Vec<Box<dyn Constraint + 'a>> = vec![Box::new(Normalization {
+        layout,
+        weight: weights.normalization(),
+    })];
+    if walls == WallRows::Consistency {
+        families.push(Box::new(WallConsistency {
             layout,
             edges: conn.edges.clone(),
             weight: weights.consistency,
-        }),
-        Box::new(Node3 {
-            layout,
-            nodes: node3,
-            weight: weights.angle,
-        }),
-        Box::new(Node2 {
-            layout,
-            nodes: node2,
-            weight: weights.angle,
-        }),
-    ];
-    if weights.closeness > 0.0 {
-        families.push(Box::new(Closeness::new(layout, surface, weights.closeness)));
+        }));
     }
-    let on_boundary = boundary_vertices_on_surface_boundary(mesh, conn, surface);
+    families.push(Box::new(Node3 {
+        layout,
+        nodes: node3,
+        weight: weights.angle,
+    }));
+    families.push(Box::new(Node2 {
+        layout,
+        nodes: node2,
+        weight: weights.angle,
+    }));
+    if weights.closeness > 0.0 {
+        let closeness = Closeness::new(layout, surface.clone(), weights.closeness);
+        families.push(Box::new(closeness));
+    }
+    let on_boundary = boundary_vertices_on_surface_boundary(mesh, conn, &surface);
     if weights.boundary > 0.0 && !on_boundary.is_empty() {
         families.push(Box::new(BoundaryCurve::new(
             layout,
-            surface,
+            surface.clone(),
             weights.boundary,
             on_boundary,
         )));
@@ -199,4 +278,127 @@ pub fn families<'a>(
     }
     families.retain(|c| c.num_rows() > 0);
     families
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{lifted_hex_patch, Shape};
+    use crate::optimize::{
+        AxesOptions, Frame, OptimizeOptions, ParallelOptions, Problem, QuadOptions,
+    };
+
+    /// A small saddle patch in the normalized frame, as `optimize` sees it.
+    fn saddle() -> (Frame, PolyMesh, Surface, Connectivity) {
+        let (base, surface) = lifted_hex_patch(Shape::Saddle, 200);
+        let frame = Frame::of(&base);
+        let mesh = frame.to_normalized(&base);
+        let surface = Surface::from_mesh(&frame.to_normalized(&surface)).unwrap();
+        let conn = Connectivity::build(&mesh).unwrap();
+        (frame, mesh, surface, conn)
+    }
+
+    /// The blocks' names, after checking that they tile `0..len` in order.
+    fn tiling(blocks: &[Block], len: usize) -> Vec<&'static str> {
+        let mut end = 0;
+        for b in blocks {
+            assert_eq!(
+                b.start, end,
+                "{} starts off the previous block's end",
+                b.name
+            );
+            end = b.end();
+        }
+        assert_eq!(end, len, "the blocks leave unknowns out");
+        blocks.iter().map(|b| b.name).collect()
+    }
+
+    /// The block called `name`.
+    fn block(blocks: &[Block], name: &str) -> Block {
+        *blocks.iter().find(|b| b.name == name).unwrap()
+    }
+
+    /// Whether every row of family `name` reads its `k`-th unknown inside `block`.
+    fn reads(problem: &Problem, name: &str, k: usize, block: Block) -> bool {
+        let f = problem.families.iter().find(|f| f.name() == name).unwrap();
+        let mut vars = vec![0; f.arity()];
+        (0..f.num_rows()).all(|r| {
+            f.row_variables(r, &mut vars);
+            block.range().contains(&vars[k])
+        })
+    }
+
+    /// Every variant's unknowns follow the honeycomb's (vertices, then wall normals, where
+    /// `Layout` reads them), in the order the variants are added, and each family reads its
+    /// own block.
+    #[test]
+    fn variants_get_blocks_after_the_honeycomb() {
+        let (frame, mesh, surface, conn) = saddle();
+        let options = OptimizeOptions {
+            min_edge: Some(0.5 * frame.unit),
+            parallel: Some(ParallelOptions::default()),
+            axes: Some(AxesOptions {
+                targets: vec![Vec3::new(0.0, 0.0, 1.0); mesh.vertices.len()],
+                weight: 0.1,
+            }),
+            quads: Some(QuadOptions::default()),
+            ..OptimizeOptions::default()
+        }
+        .resolved();
+        let problem = Problem::build(&mesh, &conn, &surface, &options, &options.weights, &frame);
+        let blocks = &problem.blocks;
+        let names = tiling(blocks, problem.x.len());
+        let expected = [
+            "vertices",
+            "wall_normals",
+            "min_edge_dummies",
+            "orientation_dummies",
+            "offset_vertices",
+            "quad_normals",
+        ];
+        assert_eq!(names, expected);
+        let (nv, ne) = (mesh.vertices.len(), conn.num_edges());
+        let quads = problem.quads.as_ref().unwrap().quads.len();
+        // One orientation row per wall end at a node: two per edge.
+        let lengths = [3 * nv, 3 * ne, ne, 2 * ne, 3 * nv, 3 * quads];
+        assert_eq!(blocks.iter().map(|b| b.len).collect::<Vec<_>>(), lengths);
+        let layout = problem.layout;
+        assert_eq!(layout.vertex(nv - 1) + 3, blocks[0].end());
+        assert_eq!(layout.normal(0), blocks[1].start);
+        assert_eq!(layout.len(), blocks[1].end());
+        let offset = problem.offset.unwrap();
+        assert_eq!(offset.start, block(blocks, "offset_vertices").start);
+        assert!(reads(&problem, "min_edge_length", 6, blocks[2]));
+        assert!(reads(&problem, "node_orientation_valence2", 9, blocks[3]));
+        assert!(reads(&problem, "quad_normalization", 0, blocks[5]));
+        let names: Vec<&str> = problem.families.iter().map(|f| f.name()).collect();
+        assert!(names.contains(&"wall_consistency") && !names.contains(&"wall_plane"));
+    }
+
+    /// With cell points the walls are planes from the start: no consistency rows, and the
+    /// planes' offsets are the last block.
+    #[test]
+    fn cell_points_walls_are_planes_with_the_last_block() {
+        let (frame, mesh, surface, conn) = saddle();
+        let options = OptimizeOptions {
+            min_edge: Some(0.5 * frame.unit),
+            ..OptimizeOptions::cell_points()
+        }
+        .resolved();
+        let problem = Problem::build(&mesh, &conn, &surface, &options, &options.weights, &frame);
+        let names = tiling(&problem.blocks, problem.x.len());
+        let expected = [
+            "vertices",
+            "wall_normals",
+            "min_edge_dummies",
+            "wall_offsets",
+        ];
+        assert_eq!(names, expected);
+        let offsets = problem.blocks[3];
+        assert_eq!(offsets.len, conn.num_edges());
+        assert!(reads(&problem, "wall_plane", 6, offsets));
+        let names: Vec<&str> = problem.families.iter().map(|f| f.name()).collect();
+        assert!(!names.contains(&"wall_consistency"), "{names:?}");
+        assert_eq!(names.last(), Some(&"wall_plane"));
+    }
 }

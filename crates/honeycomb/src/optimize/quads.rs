@@ -4,15 +4,15 @@
 
 pub use crate::structure::QuadPattern;
 
+use super::problem::ProblemBuilder;
 use super::variants::check_weight;
 use crate::constraints::{
-    LateralRun, Layout, QuadNormalBlock, QuadNormalization, QuadPlanarity, StraightFairness,
-    ZigzagFairness,
+    LateralRun, QuadNormalBlock, QuadNormalization, QuadPlanarity, StraightFairness, ZigzagFairness,
 };
 use crate::error::{Error, Result};
 use crate::geometry::{smallest_eigenvector, sum_of_outer_products, Vec3};
 use crate::mesh::{Connectivity, PolyMesh};
-use crate::solve::{Constraint, Role};
+use crate::solve::Role;
 use crate::structure::QuadCover;
 use crate::surface::Surface;
 
@@ -68,47 +68,46 @@ const FAIRNESS_ROLE: Role = Role::Condition;
 /// Which sides of a quad get a planarity row: all four (see `QuadPlanarity::sides`).
 const SIDES: [usize; 4] = [0, 1, 2, 3];
 
-/// Splits the cells of `mesh` (normalized frame), appends one unit normal per quad to `x` and
+/// Splits the cells of `mesh` (normalized frame), allocates one unit normal per quad and
 /// pushes the planarity and fairness families. The quad normals start as each quad's best-fit
 /// plane normal, turned to the side of S's normal.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn add_quads<'a>(
+pub(crate) fn add_quads(
     mesh: &PolyMesh,
     conn: &Connectivity,
     surface: &Surface,
     options: &QuadOptions,
-    layout: Layout,
     normalization_weight: f64,
-    x: &mut Vec<f64>,
-    families: &mut Vec<Box<dyn Constraint + 'a>>,
+    problem: &mut ProblemBuilder<'_, '_>,
 ) -> QuadCover {
     let cover = QuadCover::new(mesh, conn, options.pattern, options.direction);
-    let block = QuadNormalBlock { start: x.len() };
-    for q in 0..cover.quads.len() {
-        x.extend_from_slice(&best_fit_normal(cover.corners(&mesh.vertices, q), surface).to_array());
-    }
+    let normals = (0..cover.quads.len())
+        .flat_map(|q| best_fit_normal(cover.corners(&mesh.vertices, q), surface).to_array());
+    let block = QuadNormalBlock {
+        start: problem.allocate("quad_normals", normals).start,
+    };
     if cover.quads.is_empty() {
         return cover;
     }
-    families.push(Box::new(QuadNormalization {
+    let layout = problem.layout();
+    problem.push(QuadNormalization {
         block,
         num_quads: cover.quads.len(),
         weight: normalization_weight,
-    }));
-    families.push(Box::new(QuadPlanarity {
+    });
+    problem.push(QuadPlanarity {
         layout,
         block,
         quads: cover.quads.clone(),
         sides: SIDES.to_vec(),
         weight: options.w_cons_faces,
-    }));
+    });
     if options.w_fair_zigzag > 0.0 && !cover.zigzag_runs.is_empty() {
-        families.push(Box::new(ZigzagFairness {
+        problem.push(ZigzagFairness {
             layout,
             runs: cover.zigzag_runs.clone(),
             weight: options.w_fair_zigzag,
             role: FAIRNESS_ROLE,
-        }));
+        });
     }
     if options.w_fair_straight > 0.0 && !cover.straight_runs.is_empty() {
         let runs = cover
@@ -121,12 +120,12 @@ pub(crate) fn add_quads<'a>(
                 k: r.k,
             })
             .collect();
-        families.push(Box::new(StraightFairness {
+        problem.push(StraightFairness {
             layout,
             runs,
             weight: options.w_fair_straight,
             role: FAIRNESS_ROLE,
-        }));
+        });
     }
     cover
 }

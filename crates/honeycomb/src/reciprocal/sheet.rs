@@ -150,6 +150,7 @@ impl Sheet {
         (p[l] - p[r]).normalized()
     }
 
+    #[cfg(test)]
     /// The unit node axis of vertex `v` for points `p`: its triangle's normal.
     pub fn axis(&self, p: &[Vec3], v: usize) -> Vec3 {
         let [a, b, c] = self.triangles[v];

@@ -43,6 +43,7 @@ pub trait Constraint: Send + Sync {
     fn refresh(&mut self, _x: &[f64]) {}
 }
 
+#[cfg(test)]
 /// Checks a family's Jacobian against central finite differences at `x`; returns the largest
 /// absolute deviation, relative to max(1, |entry|).
 pub fn jacobian_fd_error(c: &dyn Constraint, x: &[f64], h: f64) -> f64 {

@@ -111,7 +111,7 @@ mod tests {
     use super::*;
     use crate::generate::{lifted_hex_patch, Shape};
     use crate::mesh::Connectivity;
-    use crate::optimize::{block_positions, families, Weights};
+    use crate::optimize::{block_positions, families, WallRows, Weights};
     use crate::surface::Surface;
 
     /// On a honeycomb system above the threshold (8.8k vertices, 22k blocks), nested
@@ -121,7 +121,13 @@ mod tests {
         let (base, surface) = lifted_hex_patch(Shape::Dome, 8500);
         let conn = Connectivity::build(&base).unwrap();
         let surface = Surface::from_mesh(&surface).unwrap();
-        let fams = families(&base, &conn, &surface, &Weights::default());
+        let fams = families(
+            &base,
+            &conn,
+            &surface,
+            &Weights::default(),
+            WallRows::Consistency,
+        );
         let n = 3 * (base.vertices.len() + conn.num_edges());
         let matrix = NormalMatrix::new(n, &fams, None);
         let positions = block_positions(&base, &conn, n);

@@ -124,6 +124,7 @@ pub struct GuidedProjection<'a> {
 }
 
 impl<'a> GuidedProjection<'a> {
+    #[cfg(test)]
     /// Builds the fixed pattern and its symbolic factorization.
     pub fn new(n: usize, families: Vec<Box<dyn Constraint + 'a>>) -> Result<Self> {
         Self::with_positions(n, families, None)

@@ -441,7 +441,7 @@ mod tests {
     use super::*;
     use crate::generate::{lifted_hex_patch, Shape};
     use crate::mesh::Connectivity;
-    use crate::optimize::{block_positions, families, Weights};
+    use crate::optimize::{block_positions, families, WallRows, Weights};
     use crate::surface::Surface;
 
     /// A honeycomb system's pattern (2.5k blocks) with positions, its values a symmetric
@@ -450,7 +450,13 @@ mod tests {
         let (base, surface) = lifted_hex_patch(Shape::Saddle, 1500);
         let conn = Connectivity::build(&base).unwrap();
         let surface = Surface::from_mesh(&surface).unwrap();
-        let fams = families(&base, &conn, &surface, &Weights::default());
+        let fams = families(
+            &base,
+            &conn,
+            &surface,
+            &Weights::default(),
+            WallRows::Consistency,
+        );
         let n = 3 * (base.vertices.len() + conn.num_edges());
         let mut matrix = NormalMatrix::new(n, &fams, None);
         let mut row_sums = vec![0.0; n];
