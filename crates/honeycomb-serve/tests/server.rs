@@ -280,7 +280,7 @@ fn a_design_surface_gets_a_hex_mesh_first() {
     assert_eq!(mesh["remake"]["cells"], 200);
     let mut c = Client::connect(&format!("ws://{}/ws", server.addr)).unwrap();
     c.until("state", |_| true).unwrap();
-    for (cells, says) in [(0, "--cells 0"), (10_000_000, "--cells 10000000")] {
+    for (cells, says) in [(0, "cells 0"), (10_000_000, "cells 10000000")] {
         c.send(&json!({"type": "remake", "cells": cells})).unwrap();
         let e = c.until("error", |_| true).unwrap();
         let text = e["message"].as_str().unwrap();

@@ -16,12 +16,10 @@ fn main() -> honeycomb::Result<()> {
     )?;
     let m = &made.measures;
     println!(
-        "{} cells: omega_max {:.1e} deg, delta_max {:.1e}, axis to normal {:.1} deg (parallel axes: {:.1})",
-        made.base.faces.len(),
+        "honeycomb {}: omega_max {:.1e} deg, axis to normal {:.1} deg",
+        made.is_honeycomb(),
         m.omega_max_deg,
-        m.delta_max,
-        m.axis_normal_deg.mean,
-        m.parallel_baseline_deg.mean
+        m.axis_normal_deg.mean
     );
     made.save("saddle-honeycomb")?;
     let model = Model::new(

@@ -34,6 +34,7 @@ pub use front::{
     Verdict,
 };
 pub use geometry::Vec3;
+pub use interactive::{Edit, EditSession, SessionOptions, Workspace};
 pub use optimize::WallNormals;
 pub use pipeline::Walls;
 pub use solve::{Cancel, IterationInfo};

@@ -42,10 +42,14 @@ impl Format {
                 "csv" => &[Format::Csv],
                 "all" => &Format::ALL,
                 _ => {
-                    return Err(Error::Parameter(format!(
-                        "--format {text}: unknown format {word:?}; expected glb, obj, dxf, svg, \
-                         csv or all (or several joined by commas)"
-                    )))
+                    return Err(Error::option(
+                        "format",
+                        text,
+                        format!(
+                            "unknown format {word:?}; expected glb, obj, dxf, svg, csv or all \
+                             (or several joined by commas)"
+                        ),
+                    ))
                 }
             };
             for f in more {
@@ -121,11 +125,8 @@ pub struct Exported {
 
 /// Parses `WxH` (model units).
 pub fn parse_sheet(text: &str) -> Result<Sheet> {
-    let bad = |why: &str| {
-        Error::Parameter(format!(
-            "--sheet {text}: {why}; expected WxH, e.g. 2.5x1.25"
-        ))
-    };
+    let bad =
+        |why: &str| Error::option("sheet", text, format!("{why}; expected WxH, e.g. 2.5x1.25"));
     let (w, h) = text
         .split_once(['x', 'X'])
         .ok_or_else(|| bad("no x between width and height"))?;
@@ -175,17 +176,20 @@ pub fn export(
             b[0] - a[0] > 0.0 && c2[0] - d[0] > 0.0 && p.cut.iter().flatten().all(|x| x.is_finite())
         };
         if let Some(p) = panels.iter().find(|p| !leaves_some(p)) {
-            return Err(Error::Parameter(format!(
-                "--material-thickness {}: its end cuts (each {} back from a node axis) leave \
-                 nothing of wall W{} ({} long): give a thinner plate",
+            return Err(Error::option(
+                "material_thickness",
                 rounded(c.thickness, 6),
-                rounded(c.setback, 4),
-                p.edge,
-                rounded(
-                    (h.base.vertices[p.nodes[1]] - h.base.vertices[p.nodes[0]]).norm(),
-                    4
-                )
-            )));
+                format!(
+                    "its end cuts (each {} back from a node axis) leave nothing of wall W{} ({} \
+                     long): give a thinner plate",
+                    rounded(c.setback, 4),
+                    p.edge,
+                    rounded(
+                        (h.base.vertices[p.nodes[1]] - h.base.vertices[p.nodes[0]]).norm(),
+                        4
+                    )
+                ),
+            ));
         }
     }
     let sheet = match options.sheet {
@@ -205,13 +209,14 @@ pub fn export(
         })
         .fold(0.0, f64::max);
     if sheet.width.max(sheet.height) > 1e4 * largest {
-        return Err(Error::Parameter(format!(
-            "--sheet {}x{}: more than 10000 times the largest panel ({}): give a sheet a cutter \
-             takes",
-            rounded(sheet.width, 4),
-            rounded(sheet.height, 4),
-            rounded(largest, 4)
-        )));
+        return Err(Error::option(
+            "sheet",
+            format!("{}x{}", rounded(sheet.width, 4), rounded(sheet.height, 4)),
+            format!(
+                "more than 10000 times the largest panel ({}): give a sheet a cutter takes",
+                rounded(largest, 4)
+            ),
+        ));
     }
     let gap = match cut {
         Some(c) => 2.0 * c.thickness,
@@ -225,11 +230,11 @@ pub fn export(
         None => 0.2 * median(h.depths().collect()),
     };
     if label_height > sheet.height {
-        return Err(Error::Parameter(format!(
-            "--label-height {}: taller than the sheet ({})",
+        return Err(Error::option(
+            "label_height",
             rounded(label_height, 6),
-            rounded(sheet.height, 6)
-        )));
+            format!("taller than the sheet ({})", rounded(sheet.height, 6)),
+        ));
     }
     let needs_layout = options
         .formats

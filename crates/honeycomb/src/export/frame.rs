@@ -28,10 +28,11 @@ impl Units {
             "in" => Units::In,
             "ft" => Units::Ft,
             _ => {
-                return Err(Error::Parameter(format!(
-                    "--units {text}: expected {}",
-                    Units::NAMES
-                )))
+                return Err(Error::option(
+                    "units",
+                    text,
+                    format!("expected {}", Units::NAMES),
+                ))
             }
         })
     }
@@ -80,7 +81,7 @@ impl Up {
         match text.trim().to_ascii_lowercase().as_str() {
             "z" => Ok(Up::Z),
             "y" => Ok(Up::Y),
-            _ => Err(Error::Parameter(format!("--up {text}: expected z or y"))),
+            _ => Err(Error::option("up", text, "expected z or y")),
         }
     }
 
@@ -151,6 +152,6 @@ mod tests {
         assert!((Units::Mm.millimetre() - 1.0).abs() < 1e-12);
         assert!((Units::M.millimetre() - 0.001).abs() < 1e-15);
         let e = Units::parse("furlong").unwrap_err().to_string();
-        assert!(e.contains("--units furlong"), "{e}");
+        assert!(e.contains("units furlong"), "{e}");
     }
 }

@@ -64,21 +64,23 @@ pub fn lay_out(panels: &[Panel], sheet: Sheet, gap: f64, gap_from: &str) -> Resu
                 let (lo, hi) = bounds(&turned);
                 Ok((true, lo, [hi[0] - lo[0], hi[1] - lo[1]]))
             } else {
-                Err(Error::Parameter(format!(
-                    "--sheet {}x{}: wall W{} is {} x {} and does not fit on a sheet with a \
+                Err(Error::option(
+                    "sheet",
+                    format!("{}x{}", rounded(sheet.width, 4), rounded(sheet.height, 4)),
+                    format!(
+                        "wall W{} is {} x {} and does not fit on a sheet with a \
                      gap of {} ({gap_from}) around it: give a larger sheet{}",
-                    rounded(sheet.width, 4),
-                    rounded(sheet.height, 4),
-                    p.edge,
-                    rounded(size[0], 4),
-                    rounded(size[1], 4),
-                    rounded(gap, 4),
-                    if gap_from.contains("thickness") {
-                        " or a thinner plate"
-                    } else {
-                        ""
-                    }
-                )))
+                        p.edge,
+                        rounded(size[0], 4),
+                        rounded(size[1], 4),
+                        rounded(gap, 4),
+                        if gap_from.contains("thickness") {
+                            " or a thinner plate"
+                        } else {
+                            ""
+                        }
+                    ),
+                ))
             }
         })
         .collect::<Result<_>>()?;
@@ -210,7 +212,7 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(
-            e.contains("--sheet 0.5x0.5: wall W") && e.contains("does not fit"),
+            e.contains("sheet 0.5x0.5: wall W") && e.contains("does not fit"),
             "{e}"
         );
     }

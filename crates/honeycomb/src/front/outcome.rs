@@ -102,6 +102,19 @@ impl Outcome {
     /// Writes the result as a whole: into `dir` for a honeycomb, else into `dir.failed` for
     /// inspection (the other of the two is removed); nothing half-written is ever left in
     /// either. Returns where it went.
+    ///
+    /// ```
+    /// use honeycomb::generate::{lifted_hex_patch, Shape};
+    /// use honeycomb::{optimize, BaseMesh, Options, Progress, Surface};
+    /// let (base, surface) = lifted_hex_patch(Shape::Saddle, 150);
+    /// let (base, surface) = (BaseMesh::from_mesh(base)?, Surface::new(surface)?);
+    /// let outcome = optimize(&base, &surface, &Options::default(), &mut Progress::silent())?;
+    /// let dir = std::env::temp_dir().join(format!("honeycomb-doc-{}", std::process::id()));
+    /// assert_eq!(outcome.save(&dir)?, dir);
+    /// assert!(dir.join("report.json").is_file() && dir.join("walls.obj").is_file());
+    /// # std::fs::remove_dir_all(&dir).unwrap();
+    /// # Ok::<(), honeycomb::Error>(())
+    /// ```
     pub fn save(&self, dir: impl AsRef<Path>) -> Result<PathBuf> {
         let out = OutputDir::begin(dir.as_ref(), &[])?;
         out.finish(self.placement(), |d| self.write(d))

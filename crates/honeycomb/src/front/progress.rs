@@ -3,23 +3,31 @@
 pub use crate::pipeline::Step;
 use crate::solve::Cancel;
 
-/// Where a solve is ([`Step`]s, to a callback) and whether to stop it. A callback may stop the
-/// work by calling [`Progress::cancel`] on a handle it holds (from [`Progress::cancel_handle`]):
-/// the work then ends before its next iteration with [`crate::Error::Cancelled`].
+/// Where a solve is ([`Step`]s, to a callback) and whether to stop it: the work ends before its
+/// next iteration with [`crate::Error::Cancelled`] once its [`Cancel`] flag is set (from a
+/// Ctrl-C handler, another thread, or the callback itself).
 ///
 /// ```
-/// use honeycomb::{Progress, Step};
+/// use honeycomb::generate::{lifted_hex_patch, Shape};
+/// use honeycomb::{optimize, BaseMesh, Cancel, Error, Options, Progress, Step, Surface};
+/// let (base, surface) = lifted_hex_patch(Shape::Dome, 300);
+/// let (base, surface) = (BaseMesh::from_mesh(base)?, Surface::new(surface)?);
+/// // Stop after two iterations, from inside the callback.
+/// let stop = Cancel::new();
+/// let inside = stop.clone();
 /// let mut iterations = 0;
-/// let mut progress = Progress::new(|step| {
-///     if let Step::Iteration(_, _, _) = step {
+/// let mut progress = Progress::new(move |step| {
+///     if let Step::Iteration(..) = step {
 ///         iterations += 1;
+///         if iterations == 2 {
+///             inside.cancel();
+///         }
 ///     }
-/// });
-/// let stop = progress.cancel_handle();
-/// stop.cancel(); // From a Ctrl-C handler, another thread, or the callback itself.
-/// assert!(progress.is_cancelled());
-/// # drop(progress);
-/// # assert_eq!(iterations, 0);
+/// })
+/// .with_cancel(stop);
+/// let result = optimize(&base, &surface, &Options::default(), &mut progress);
+/// assert!(matches!(result, Err(Error::Cancelled)));
+/// # Ok::<(), Error>(())
 /// ```
 pub struct Progress<'a> {
     report: Option<Box<dyn FnMut(Step<'_>) + 'a>>,
@@ -43,8 +51,14 @@ impl<'a> Progress<'a> {
         }
     }
 
-    /// A handle that stops the work: keep it, give it to a signal handler or a thread, or move
-    /// it into the callback.
+    /// Reads `cancel` to know when to stop (made before the callback, so that the callback can
+    /// hold a clone of it).
+    pub fn with_cancel(mut self, cancel: Cancel) -> Progress<'a> {
+        self.cancel = cancel;
+        self
+    }
+
+    /// A handle that stops the work: keep it, give it to a signal handler or a thread.
     pub fn cancel_handle(&self) -> Cancel {
         self.cancel.clone()
     }

@@ -243,6 +243,20 @@ pub struct EditSession {
 impl EditSession {
     /// Solves the workspace into a honeycomb, then sets up the editing solver (its symbolic
     /// factorization is the only one of the session). `ws` is the session's own or shared.
+    ///
+    /// ```
+    /// use honeycomb::generate::{lifted_hex_patch, Shape};
+    /// use honeycomb::{Edit, EditSession, SessionOptions, Workspace};
+    /// let (base, surface) = lifted_hex_patch(Shape::Dome, 200);
+    /// let ws = Workspace::new(&base, Some(&surface), None)?;
+    /// let mut session = EditSession::new(ws, SessionOptions::default())?;
+    /// // Mode (ii): vertex 0 slides along its node axis; the walls stay honeycomb walls.
+    /// session.apply(Edit::SlideVertex { vertex: 0, distance: 0.05 }, None)?;
+    /// session.finish()?;
+    /// assert!(session.view().measures.omega_max_deg < 0.01);
+    /// assert!(session.undo());
+    /// # Ok::<(), honeycomb::Error>(())
+    /// ```
     pub fn new(ws: impl Into<Arc<Workspace>>, options: SessionOptions) -> Result<EditSession> {
         let ws: Arc<Workspace> = ws.into();
         options.weights.validate()?;

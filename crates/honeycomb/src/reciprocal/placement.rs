@@ -160,7 +160,7 @@ pub fn place(
         None,
         &[],
     )?;
-    let first = start.solve(&mut y, &exact, &mut |_| {})?;
+    let first = start.solve(&mut y, &exact, progress)?;
     let families: Vec<Box<dyn Constraint + '_>> = vec![
         Box::new(Closeness::new(layout, surface, options.closeness)),
         Box::new(EdgeVectors {

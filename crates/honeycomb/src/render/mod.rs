@@ -24,11 +24,11 @@ pub const WIDTHS: std::ops::RangeInclusive<u32> = 480..=8000;
 /// Refuses a picture width outside [`WIDTHS`], before anything is drawn.
 pub fn check_width(width: u32) -> crate::Result<()> {
     if !WIDTHS.contains(&width) {
-        return Err(crate::Error::Parameter(format!(
-            "--width {width}: expected {} to {} pixels",
-            WIDTHS.start(),
-            WIDTHS.end()
-        )));
+        return Err(crate::Error::option(
+            "width",
+            width,
+            format!("expected {} to {} pixels", WIDTHS.start(), WIDTHS.end()),
+        ));
     }
     Ok(())
 }

@@ -136,6 +136,20 @@ impl Surface {
     }
 
     /// A design surface from a polygon mesh, checked as [`Surface::read`] does.
+    ///
+    /// ```
+    /// use honeycomb::mesh::PolyMesh;
+    /// use honeycomb::{Surface, Vec3};
+    /// let square = PolyMesh::new(
+    ///     vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)],
+    ///     vec![vec![0, 1, 2, 3]],
+    /// );
+    /// let s = Surface::new(square)?;
+    /// assert!((s.closest_point(Vec3::new(0.5, 0.5, 2.0)).distance - 2.0).abs() < 1e-12);
+    /// // A face with an index beyond the vertices is refused.
+    /// assert!(Surface::new(PolyMesh::new(vec![Vec3::ZERO; 3], vec![vec![0, 1, 5]])).is_err());
+    /// # Ok::<(), honeycomb::Error>(())
+    /// ```
     pub fn new(mesh: PolyMesh) -> Result<Surface> {
         crate::mesh::validate_surface_mesh(&mesh)?;
         Surface::from_mesh(&mesh)
