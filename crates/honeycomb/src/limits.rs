@@ -2,7 +2,7 @@
 //! run would exhaust the memory of a 24 GiB machine or run for days, and a typo (an extra
 //! zero) should get an error at once rather than either. The lattice's own bounds are in
 //! [`crate::init`] ([`crate::init::MAX_CELLS`], [`crate::init::edge_length_range`]), the
-//! picture's in [`crate::render::MAX_WIDTH`].
+//! picture's in `render::WIDTHS`.
 
 use crate::error::{Error, Result};
 use crate::init::{hexagon_area, CellSize, InitOptions};

@@ -8,5 +8,4 @@ mod spherical_image;
 
 pub use light::{light_share, read_directions, LightShare, DEFAULT_LIGHT_SAMPLES};
 pub use shading::{extruded_along_normals, shading_report, LightComparison, ShadingReport};
-pub use spherical_area::{oriented_area, total_turning, triangle_area};
 pub use spherical_image::{spherical_image, CellImage, SphericalImage};

@@ -103,9 +103,9 @@ pub enum Variant {
     Parallel {
         /// A soft constant depth |v - v'| (model units).
         depth: Option<f64>,
-        /// Weight of edge parallelity [1].
+        /// Weight of edge parallelity (default 1).
         w_parallel: Option<f64>,
-        /// Weight of the constant depth [0.1].
+        /// Weight of the constant depth (default 0.1).
         w_depth: Option<f64>,
     },
     /// Every hexagon capped by two planar quads (Figs. 1, 11, 17).
@@ -113,17 +113,17 @@ pub enum Variant {
         pattern: QuadPattern,
         /// The straight polylines follow the lattice direction closest to this.
         quad_direction: Option<Vec3>,
-        /// Weight of quad planarity [0.1].
+        /// Weight of quad planarity (default 0.1).
         w_cons_faces: Option<f64>,
-        /// Weight of zigzag fairness [0.01].
+        /// Weight of zigzag fairness (default 0.01).
         w_fair_zig: Option<f64>,
-        /// Weight of straight-polyline fairness [0.01].
+        /// Weight of straight-polyline fairness (default 0.01).
         w_fair_str: Option<f64>,
     },
     /// Prescribed node axes (Fig. 10): one direction per base-mesh vertex (zero: free).
     Axes {
         axes: Vec<Vec3>,
-        /// Weight of the prescribed axes [0.1].
+        /// Weight of the prescribed axes (default 0.1).
         w_axes: Option<f64>,
     },
     /// Shading (Fig. 18): node axes across the direction the light travels in, so that the
@@ -131,7 +131,7 @@ pub enum Variant {
     Shading {
         light: Vec3,
         sun_path: Vec<Vec3>,
-        /// Weight of the axes across the light [0.03].
+        /// Weight of the axes across the light (default 0.03).
         w_axes: Option<f64>,
     },
 }

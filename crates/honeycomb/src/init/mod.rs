@@ -249,9 +249,9 @@ fn fitting_bottom(shortest: f64, longest: f64) -> f64 {
     shortest.max(FITTING_BOTTOM * longest)
 }
 
-/// The longest edge length found (to [`FITTING_DIGITS`] significant digits, and within
+/// The longest edge length found (to `FITTING_DIGITS` significant digits, and within
 /// [`edge_length_range`]) at which `init` with `options` lays a base mesh on `surface`, or
-/// `None` when none down to a hundredth of the range's top does within [`FITTING_SECONDS`].
+/// `None` when none down to a hundredth of the range's top does within `FITTING_SECONDS`.
 /// Found by trying, from the top down and then by halving: cells longer than the surface's
 /// outline holds fit nowhere, and where the longest that fit lie depends on the outline, the
 /// flattening and the lattice (a size that misses between two that fit can hide a longer
@@ -284,7 +284,7 @@ pub fn largest_fitting_edge(surface: &PolyMesh, options: &InitOptions) -> Option
     }
 }
 
-/// The largest number of [`FITTING_DIGITS`] digits from `top` down to `bottom` for which
+/// The largest number of `FITTING_DIGITS` digits from `top` down to `bottom` for which
 /// `lays` holds, found in steps of [`FITTING_STEP`] and then by halving the last step.
 fn search_down(top: f64, bottom: f64, lays: impl Fn(f64) -> bool) -> Option<f64> {
     let digits = |x: f64| rounded_down(x, FITTING_DIGITS);

@@ -188,7 +188,7 @@ pub const MOVE_PER_RING: f64 = 0.2;
 /// How far a slide (mode ii) may carry a vertex from S (mean edge lengths). A slide leaves M
 /// off S, and the next re-solve (modes i and iii hold M to S) pulls it back: a slide far off S
 /// is an edit that the next solve silently undoes, so it stops here. Beyond
-/// [`crate::reciprocal::ON_S`] (S's tolerance) a slide comes with a warning.
+/// `ON_S` (reciprocal) (S's tolerance) a slide comes with a warning.
 pub const MAX_SLIDE_OFF_S: f64 = 0.25;
 
 /// What an applied edit has to tell the user.

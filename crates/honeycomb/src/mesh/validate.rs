@@ -11,7 +11,7 @@ const LISTED: usize = 5;
 /// no digits for a cell's size (a 10 km site in micrometres is 1e10).
 pub const MAX_COORDINATE: f64 = 1e12;
 
-/// A mesh smaller than this across is refused, as one beyond [`MAX_COORDINATE`] is: its
+/// A mesh smaller than this across is refused, as one beyond `MAX_COORDINATE` is: its
 /// squared lengths and areas fall below what a float holds (a 1 mm part in kilometres is 1e-6).
 pub const MIN_EXTENT: f64 = 1e-6;
 
@@ -20,7 +20,7 @@ pub const MIN_EXTENT: f64 = 1e-6;
 const FLAT_FACE: f64 = 1e-12;
 
 /// Accepts a design surface: any non-empty manifold polygon mesh with finite coordinates within
-/// [`MAX_COORDINATE`], no isolated vertices, no zero-length edges and no face without area.
+/// `MAX_COORDINATE`, no isolated vertices, no zero-length edges and no face without area.
 pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {
     if mesh.vertices.is_empty() || mesh.faces.is_empty() {
         return Err(Error::Mesh(format!(
@@ -135,7 +135,7 @@ fn check_edge_lengths(mesh: &PolyMesh, conn: &Connectivity) -> Result<()> {
 pub const MAX_SURFACE_GAP: f64 = 10.0;
 
 /// Refuses a base mesh that lies far from its design surface (their bounding boxes more than
-/// [`MAX_SURFACE_GAP`] mean edge lengths apart), before a solve that could only fail.
+/// `MAX_SURFACE_GAP` mean edge lengths apart), before a solve that could only fail.
 pub fn check_base_near_surface(base: &PolyMesh, surface: &PolyMesh) -> Result<()> {
     let (Some(a), Some(b)) = (bounds(base), bounds(surface)) else {
         return Ok(());

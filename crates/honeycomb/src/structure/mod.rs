@@ -7,14 +7,17 @@ mod quad_cover;
 mod quad_measures;
 mod variant_measures;
 
-pub use axes::node_axes;
+pub(crate) use axes::node_axes;
 pub use honeycomb::{Honeycomb, StructureJson};
-pub use measures::{
-    line_angle_deg, measure, node_angles, per_wall_worse_end, quad_planarity, thickest_uncrossed,
-    Measures, Spread,
-};
-pub use quad_cover::{EdgeClasses, QuadCover, QuadPattern, StraightRun, ZigzagRun};
-pub use quad_measures::{face_measures, quad_mesh_measures, FaceMeasures};
-pub use variant_measures::{
-    angle_deg, axes_measures, parallel_measures, AxesMeasures, ParallelMeasures,
-};
+pub(crate) use measures::{line_angle_deg, per_wall_worse_end, quad_planarity, thickest_uncrossed};
+pub use measures::{measure, Measures, Spread};
+pub(crate) use quad_cover::QuadCover;
+pub use quad_cover::QuadPattern;
+#[cfg(test)]
+pub(crate) use quad_measures::face_measures;
+pub(crate) use quad_measures::quad_mesh_measures;
+pub use quad_measures::FaceMeasures;
+#[cfg(test)]
+pub(crate) use variant_measures::angle_deg;
+pub(crate) use variant_measures::{axes_measures, parallel_measures};
+pub use variant_measures::{AxesMeasures, ParallelMeasures};

@@ -11,8 +11,10 @@ mod orient;
 mod tests;
 
 pub use boundary::BoundaryPoint;
-pub use bvh::Bvh;
-pub use closest::{closest_point_on_segment, closest_point_on_triangle};
+pub(crate) use bvh::Bvh;
+#[cfg(test)]
+pub(crate) use closest::closest_point_on_segment;
+pub(crate) use closest::closest_point_on_triangle;
 pub use curvature::CurvatureUnits;
 
 use crate::error::{Error, Result};

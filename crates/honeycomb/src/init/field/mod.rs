@@ -1,6 +1,6 @@
 //! Field-aligned hexagonal remeshing, after "Instant Field-Aligned Meshes" (Jakob, Tarini,
 //! Panozzo, Sorkine-Hornung 2015), for surfaces no flattening suits (the paper's section 3
-//! starts from a hex mesh whose edges follow a 6-RoSy field, [NPPZ12] with [BZK09]).
+//! starts from a hex mesh whose edges follow a 6-RoSy field, \[NPPZ12\] with \[BZK09\]).
 //!
 //! 1. `sampling`: S's triangles, refined until the fields have several samples per cell.
 //! 2. `hierarchy`: coarser and coarser graphs over the samples, to solve fields fast.
