@@ -3,6 +3,9 @@
 pub use crate::pipeline::Step;
 use crate::solve::Cancel;
 
+/// The callback that steps go to.
+type Report<'a> = Box<dyn FnMut(Step<'_>) + 'a>;
+
 /// Where a solve is ([`Step`]s, to a callback) and whether to stop it: the work ends before its
 /// next iteration with [`crate::Error::Cancelled`] once its [`Cancel`] flag is set (from a
 /// Ctrl-C handler, another thread, or the callback itself).
@@ -30,7 +33,7 @@ use crate::solve::Cancel;
 /// # Ok::<(), Error>(())
 /// ```
 pub struct Progress<'a> {
-    report: Option<Box<dyn FnMut(Step<'_>) + 'a>>,
+    report: Option<Report<'a>>,
     cancel: Cancel,
 }
 

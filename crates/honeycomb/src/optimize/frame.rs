@@ -19,13 +19,13 @@ impl Frame {
         }
     }
 
-    pub fn to_normalized(&self, mesh: &PolyMesh) -> PolyMesh {
+    pub fn to_normalized(self, mesh: &PolyMesh) -> PolyMesh {
         let mut m = mesh.clone();
         m.transform(self.center, 1.0 / self.unit);
         m
     }
 
-    pub fn to_model(&self, p: Vec3) -> Vec3 {
+    pub fn to_model(self, p: Vec3) -> Vec3 {
         p * self.unit + self.center
     }
 }
