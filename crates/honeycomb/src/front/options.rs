@@ -239,7 +239,7 @@ impl Options {
             Variant::Plain => Ok(()),
             Variant::Parallel { .. } => self.parallel().map(|_| ()),
             Variant::Quads { .. } => self.quads().map(|_| ()),
-            Variant::Axes { axes, w_axes } => {
+            Variant::Axes { axes, .. } => {
                 if let Some(v) = axes.iter().position(|a| !a.is_finite()) {
                     return Err(Error::option(
                         "axes",
@@ -247,12 +247,10 @@ impl Options {
                         "expected finite directions",
                     ));
                 }
-                crate::optimize::check_weight("w_axes", w_axes.unwrap_or(0.1), false)
+                self.check_axes_weight()
             }
             Variant::Shading {
-                light,
-                sun_path,
-                w_axes,
+                light, sun_path, ..
             } => {
                 for (field, d) in std::iter::once(("light", light))
                     .chain(sun_path.iter().map(|d| ("sun_path", d)))
@@ -261,9 +259,17 @@ impl Options {
                         Error::option(field, short_vector(*d), "expected a non-zero direction")
                     })?;
                 }
-                crate::optimize::check_weight("w_axes", w_axes.unwrap_or(0.03), false)
+                self.check_axes_weight()
             }
         }
+    }
+
+    /// The prescribed axes' weight, given or the variant's default.
+    fn check_axes_weight(&self) -> Result<()> {
+        for (field, w) in self.variant.weights() {
+            crate::optimize::check_weight(field, w, false)?;
+        }
+        Ok(())
     }
 
     /// The weights as the solver takes them.
@@ -346,19 +352,20 @@ impl Options {
         surface: &Surface,
     ) -> Result<OptimizeOptions> {
         let mut options = self.optimize_options()?;
+        let weight = self.variant.weights().first().map_or(0.0, |&(_, w)| w);
         let axes = match &self.variant {
-            Variant::Axes { axes, w_axes } => Some(AxesOptions {
+            Variant::Axes { axes, .. } => Some(AxesOptions {
                 targets: axes.clone(),
-                weight: w_axes.unwrap_or(AxesOptions::DEFAULT_WEIGHT),
+                weight,
             }),
-            Variant::Shading { light, w_axes, .. } => {
+            Variant::Shading { light, .. } => {
                 // Walls tilted far from the normals collapse boundary edges without it.
                 options
                     .min_edge
                     .get_or_insert(SHADING_MIN_EDGE * base.mean_edge_length());
                 Some(AxesOptions {
                     targets: shading_axes(surface, &base.vertices, *light)?,
-                    weight: w_axes.unwrap_or(AxesOptions::SHADING_WEIGHT),
+                    weight,
                 })
             }
             _ => None,
