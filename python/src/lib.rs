@@ -246,19 +246,23 @@ where
 
 /// Makes a honeycomb on a design surface from nothing else.
 ///
-/// `surface`: a path (OBJ, OFF, PLY), a `(vertices, faces)` pair or a compas Mesh. `cells`:
+/// `surface`: a path (OBJ, OFF, PLY), a `(vertices, faces)` pair or a compas Mesh. `walls`:
+/// "across", "uniform", "free" or a direction (x, y, z) for every node axis. `cells`:
 /// about this many cells (or `edge_length` in model units); `method`: "flatten" or "field";
 /// `seed` shifts the lattice. Other keyword arguments are the options of `honeycomb
 /// optimize` by their field names (`w_fair` for `--w-fair`). `progress(step: dict)` is
 /// called at every step; returning False stops the work (`honeycomb.Cancelled`).
 #[pyfunction]
-#[pyo3(signature = (surface, cells=1500, walls="across", *, edge_length=None, method="flatten", seed=0, progress=None, **options))]
+#[pyo3(
+    signature = (surface, cells=1500, walls=None, *, edge_length=None, method="flatten", seed=0, progress=None, **options),
+    text_signature = "(surface, cells=1500, walls='across', *, edge_length=None, method='flatten', seed=0, progress=None, **options)"
+)]
 #[allow(clippy::too_many_arguments)]
 fn pipeline(
     py: Python<'_>,
     surface: &Bound<'_, PyAny>,
     cells: usize,
-    walls: &str,
+    walls: Option<&Bound<'_, PyAny>>,
     edge_length: Option<f64>,
     method: &str,
     seed: u64,
@@ -266,7 +270,10 @@ fn pipeline(
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<HoneycombResult> {
     let kwargs = options.cloned().unwrap_or_else(|| PyDict::new(py));
-    kwargs.set_item("walls", walls)?;
+    match walls {
+        Some(walls) => kwargs.set_item("walls", walls)?,
+        None => kwargs.set_item("walls", "across")?,
+    }
     let options = self::options(py, &kwargs)?;
     let mut pipeline_options = PipelineOptions::new(cells);
     pipeline_options.init.size = match edge_length {
