@@ -9,9 +9,11 @@ use honeycomb::export::read_structure;
 use honeycomb::init::{CellSize, Method};
 use honeycomb::limits::check_solve_cells;
 use honeycomb::mesh::PolyMesh;
+use honeycomb::report::Report;
 use honeycomb::structure::{measure, Honeycomb};
 use honeycomb::{
-    BaseMesh, Cancel, Error, Options, Outcome, PipelineOptions, Progress, Step, Surface, Vec3,
+    BaseMesh, Cancel, Edit, EditSession, Error, Options, Outcome, PipelineOptions, Progress,
+    SessionOptions, Step, Surface, Vec3, Workspace,
 };
 use numpy::{
     IntoPyArray, PyArray2, PyArrayDescrMethods, PyArrayMethods, PyReadonlyArray2, PyUntypedArray,
@@ -503,7 +505,8 @@ impl HoneycombResult {
     fn save(&self, py: Python<'_>, dir: PathBuf) -> PyResult<PathBuf> {
         let Some(outcome) = &self.outcome else {
             return Err(PyValueError::new_err(
-                "a structure read back is saved already: copy its directory",
+                "only a result of pipeline or optimize can be saved (one read back is saved \
+                 already; an edit session's is not measured against a report)",
             ));
         };
         py.detach(|| outcome.save(Path::new(&dir))).map_err(py_err)
@@ -523,6 +526,185 @@ impl HoneycombResult {
     }
 }
 
+/// A point or direction (x, y, z) from any array-like.
+fn point(py: Python<'_>, what: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec3> {
+    let np = py.import("numpy")?;
+    let p = np
+        .call_method1("reshape", (obj, (1, 3)))
+        .map_err(|_| PyValueError::new_err(format!("{what}: expected three numbers (x, y, z)")))?;
+    Ok(points(py, what, &p)?[0])
+}
+
+/// Live editing of a honeycomb (the paper's three modes): each edit re-optimizes (or, for a
+/// slide, moves one vertex) and returns the result; with undo and redo.
+#[pyclass(name = "EditSession", module = "honeycomb", frozen)]
+struct PyEditSession {
+    session: Mutex<EditSession>,
+}
+
+impl PyEditSession {
+    /// Applies `edit` and runs its solve to the end, without the GIL.
+    fn edit(&self, py: Python<'_>, edit: Edit) -> PyResult<HoneycombResult> {
+        let applied = py
+            .detach(|| -> honeycomb::Result<_> {
+                let mut session = self.session.lock().unwrap();
+                let applied = session.apply(edit, None)?;
+                session.finish()?;
+                Ok(applied)
+            })
+            .map_err(py_err)?;
+        if let Some(warning) = applied.warning {
+            let message = std::ffi::CString::new(warning).unwrap_or_default();
+            PyErr::warn(
+                py,
+                &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+                &message,
+                1,
+            )?;
+        }
+        self.result(py)
+    }
+}
+
+#[pymethods]
+impl PyEditSession {
+    /// Optimizes `base` (a path, a `(vertices, faces)` pair or a compas Mesh) on `surface`
+    /// (default: itself) into a honeycomb to edit, M' at `thickness` (model units; default 0.3
+    /// mean edge lengths). A structure directory (`save`'s) goes on being edited from its walls
+    /// with `EditSession.read(dir)`.
+    #[new]
+    #[pyo3(signature = (base, surface=None, *, thickness=None))]
+    fn new(
+        py: Python<'_>,
+        base: &Bound<'_, PyAny>,
+        surface: Option<&Bound<'_, PyAny>>,
+        thickness: Option<f64>,
+    ) -> PyResult<PyEditSession> {
+        let base = mesh_arg(py, "base", base)?;
+        let surface = surface.map(|s| mesh_arg(py, "surface", s)).transpose()?;
+        let session = py
+            .detach(|| -> honeycomb::Result<EditSession> {
+                let base = base_of(base)?;
+                let surface = surface.map(surface_of).transpose()?;
+                let ws = Workspace::new(
+                    base.mesh(),
+                    surface.as_ref().map(|s| s.source_mesh()),
+                    thickness,
+                )?;
+                EditSession::new(ws, SessionOptions::default())
+            })
+            .map_err(py_err)?;
+        Ok(PyEditSession {
+            session: Mutex::new(session),
+        })
+    }
+
+    /// A structure directory to go on editing, its walls the start; `surface` as for `read`.
+    #[staticmethod]
+    #[pyo3(signature = (dir, surface=None))]
+    fn read(
+        py: Python<'_>,
+        dir: PathBuf,
+        surface: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<PyEditSession> {
+        let surface = surface.map(|s| mesh_arg(py, "surface", s)).transpose()?;
+        let session = py
+            .detach(|| -> honeycomb::Result<EditSession> {
+                let (h, _) = read_structure(&dir)?;
+                let kept = dir.join("surface.obj");
+                let surface = match surface {
+                    Some(s) => Some(surface_of(s)?),
+                    None if kept.is_file() => Some(Surface::read(&kept)?),
+                    None => None,
+                };
+                let ws = Workspace::from_honeycomb(&h, surface.as_ref().map(|s| s.source_mesh()))?;
+                EditSession::new(ws, SessionOptions::default())
+            })
+            .map_err(py_err)?;
+        Ok(PyEditSession {
+            session: Mutex::new(session),
+        })
+    }
+
+    /// Mode (i): `vertex` goes to the point of the surface closest to `target` and is held
+    /// there, the vertices up to `radius` rings away moving along; re-optimizes.
+    #[pyo3(signature = (vertex, target, radius=0))]
+    fn move_vertex(
+        &self,
+        py: Python<'_>,
+        vertex: usize,
+        target: &Bound<'_, PyAny>,
+        radius: usize,
+    ) -> PyResult<HoneycombResult> {
+        let target = point(py, "target", target)?;
+        self.edit(
+            py,
+            Edit::MoveVertex {
+                vertex,
+                target,
+                radius,
+            },
+        )
+    }
+
+    /// Mode (ii): `vertex` moves `distance` along its node axis (towards M' when positive);
+    /// nothing is optimized.
+    fn slide_vertex(
+        &self,
+        py: Python<'_>,
+        vertex: usize,
+        distance: f64,
+    ) -> PyResult<HoneycombResult> {
+        self.edit(py, Edit::SlideVertex { vertex, distance })
+    }
+
+    /// Mode (iii): the node axis of `vertex` turns to `direction`, the axes up to `radius`
+    /// rings away following; re-optimizes with the axes as targets.
+    #[pyo3(signature = (vertex, direction, radius=0))]
+    fn turn_axis(
+        &self,
+        py: Python<'_>,
+        vertex: usize,
+        direction: &Bound<'_, PyAny>,
+        radius: usize,
+    ) -> PyResult<HoneycombResult> {
+        let direction = point(py, "direction", direction)?;
+        self.edit(
+            py,
+            Edit::TurnAxis {
+                vertex,
+                direction,
+                radius,
+            },
+        )
+    }
+
+    /// Back to the state before the last edit; False when there is none.
+    fn undo(&self) -> bool {
+        self.session.lock().unwrap().undo()
+    }
+
+    /// The edit undone last, again; False when there is none.
+    fn redo(&self) -> bool {
+        self.session.lock().unwrap().redo()
+    }
+
+    /// The honeycomb as it stands, measured (no report: `report` is None).
+    #[getter]
+    fn result(&self, py: Python<'_>) -> PyResult<HoneycombResult> {
+        let view = py.detach(|| self.session.lock().unwrap().view());
+        let is_honeycomb = Report::within_tolerances(&view.measures);
+        Ok(HoneycombResult {
+            is_honeycomb,
+            why: (!is_honeycomb).then(|| Report::tolerance_summary(&view.measures, false)),
+            measures: to_json(py, &view.measures)?,
+            honeycomb: view.honeycomb,
+            outcome: None,
+            report: py.None(),
+        })
+    }
+}
+
 #[pymodule]
 #[pyo3(name = "honeycomb")]
 fn honeycomb_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -530,6 +712,7 @@ fn honeycomb_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(optimize, m)?)?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_class::<HoneycombResult>()?;
+    m.add_class::<PyEditSession>()?;
     m.add("Cancelled", m.py().get_type::<Cancelled>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

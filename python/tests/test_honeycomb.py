@@ -236,3 +236,48 @@ def test_the_same_as_the_cli(surface, result, tmp_path):
     from_cli = honeycomb.read(out)
     assert from_cli.faces == result.faces
     assert np.allclose(from_cli.vertices, result.vertices, atol=1e-9)
+
+
+def test_edit_session_modes_undo_and_redo(result, surface, tmp_path):
+    session = honeycomb.EditSession((result.vertices, result.faces), surface)
+    start = session.result
+    assert start.is_honeycomb, start.why
+    assert start.report is None
+    inner = int(np.argmin(np.linalg.norm(start.vertices[:, :2], axis=1)))
+    # Mode (ii): along the node axis, the walls unchanged.
+    with pytest.warns(UserWarning, match="off S"):
+        slid = session.slide_vertex(inner, 0.01)
+    moved = slid.vertices[inner] - start.vertices[inner]
+    assert np.allclose(moved, 0.01 * start.node_axes[inner], atol=1e-6)
+    assert slid.is_honeycomb
+    # Mode (i): towards a point, re-optimized.
+    target = start.vertices[inner] + [0.02, 0.0, 0.0]
+    dragged = session.move_vertex(inner, target, radius=1)
+    assert dragged.vertices[inner][0] > start.vertices[inner][0] + 0.005
+    assert dragged.is_honeycomb, dragged.why
+    # Mode (iii): turn an axis.
+    axis = start.node_axes[inner] + [0.2, 0.0, 0.0]
+    turned = session.turn_axis(inner, axis, radius=2)
+    assert turned.measures["omega_max_deg"] < 1.0
+    assert not np.allclose(turned.node_axes[inner], dragged.node_axes[inner])
+    assert session.undo() and session.undo()
+    assert np.allclose(session.result.vertices[inner], slid.vertices[inner], atol=1e-9)
+    assert session.redo()
+    assert np.allclose(session.result.vertices[inner], dragged.vertices[inner], atol=1e-9)
+    with pytest.raises(ValueError):
+        session.move_vertex(inner, [1.0, 2.0])
+    with pytest.raises(ValueError):
+        session.result.save(tmp_path / "edited")
+
+
+def test_edit_session_from_a_saved_structure(result, surface, tmp_path):
+    # save() writes no surface.obj: the surface is given (without it the session edits on
+    # M itself, and its first solve gives no honeycomb: see the report of issue 25's work).
+    result.save(tmp_path / "out")
+    session = honeycomb.EditSession.read(tmp_path / "out", surface)
+    edited = session.result
+    assert edited.is_honeycomb, edited.why
+    assert edited.faces == result.faces
+    # The session's first solve starts from the saved walls and moves little.
+    scale = result.measures["mean_edge_length"]
+    assert np.abs(edited.vertices - result.vertices).max() < 0.25 * scale
