@@ -278,6 +278,9 @@ def test_edit_session_from_a_saved_structure(result, surface, tmp_path):
     edited = session.result
     assert edited.is_honeycomb, edited.why
     assert edited.faces == result.faces
-    # The session's first solve starts from the saved walls and moves little.
+    # The session's first solve starts from the saved walls: inner vertices barely move,
+    # boundary ones go towards S's boundary (the pipeline trimmed its boundary cells).
     scale = result.measures["mean_edge_length"]
-    assert np.abs(edited.vertices - result.vertices).max() < 0.25 * scale
+    moved = np.linalg.norm(edited.vertices - result.vertices, axis=1)
+    assert np.median(moved) < 0.05 * scale
+    assert moved.max() < 0.5 * scale
