@@ -56,8 +56,8 @@ class Result:
         """omega (degrees from 120 at the nodes), delta (wall planarity), closeness to the
         surface, axis to normal, edge lengths, valences."""
     @property
-    def report(self) -> Dict[str, Any]:
-        """The report, with the keys of report.json."""
+    def report(self) -> Optional[Dict[str, Any]]:
+        """The report, with the keys of report.json (None for an edit session's)."""
     @property
     def is_honeycomb(self) -> bool:
         """Every node within the 120-degree tolerance and every wall planar."""
@@ -66,7 +66,45 @@ class Result:
         """Why this is not a honeycomb, in a sentence; None for a honeycomb."""
     def save(self, dir: Union[str, "os.PathLike[str]"]) -> str:
         """Writes structure.json, base.obj, offset.obj, walls.obj, report.json, ... into
-        ``dir`` for a honeycomb, else into ``dir.failed``; returns where they went."""
+        ``dir`` for a honeycomb, else into ``dir.failed``; returns where they went. Only for
+        a result of :func:`pipeline` or :func:`optimize` (ValueError otherwise)."""
+
+class EditSession:
+    """Live editing of a honeycomb (the paper's three modes), with undo and redo. Each edit
+    runs its solve to the end without the GIL and returns the honeycomb as it stands (its
+    ``report`` is None; ``is_honeycomb`` by the report's tolerances)."""
+
+    def __init__(
+        self,
+        base: MeshLike,
+        surface: Optional[MeshLike] = None,
+        *,
+        thickness: Optional[float] = None,
+    ) -> None:
+        """Optimizes ``base`` on ``surface`` (default: itself) into a honeycomb to edit, M' at
+        ``thickness`` (model units; default 0.3 mean edge lengths)."""
+    @staticmethod
+    def read(
+        dir: Union[str, "os.PathLike[str]"], surface: Optional[MeshLike] = None
+    ) -> "EditSession":
+        """A saved structure to go on editing from its walls; ``surface`` as for :func:`read`
+        (give it: without it the session edits on M itself)."""
+    def move_vertex(self, vertex: int, target: npt.ArrayLike, radius: int = 0) -> Result:
+        """Mode (i): ``vertex`` to the surface's point closest to ``target``, the vertices up
+        to ``radius`` rings away moving along; re-optimized."""
+    def slide_vertex(self, vertex: int, distance: float) -> Result:
+        """Mode (ii): ``vertex`` moves ``distance`` along its node axis; nothing is
+        optimized. Warns (UserWarning) when that leaves it off the surface."""
+    def turn_axis(self, vertex: int, direction: npt.ArrayLike, radius: int = 0) -> Result:
+        """Mode (iii): the node axis of ``vertex`` turns to ``direction``, the axes up to
+        ``radius`` rings away following; re-optimized with the axes as targets."""
+    def undo(self) -> bool:
+        """Back to the state before the last edit; False when there is none."""
+    def redo(self) -> bool:
+        """The edit undone last, again; False when there is none."""
+    @property
+    def result(self) -> Result:
+        """The honeycomb as it stands, measured."""
 
 def pipeline(
     surface: MeshLike,
