@@ -69,6 +69,11 @@ class Result:
         ``dir`` for a honeycomb, else into ``dir.failed``; returns where they went. Only for
         a result of :func:`pipeline` or :func:`optimize` (ValueError otherwise)."""
 
+    def to_compas(self) -> Any:
+        """M as a compas ``Mesh`` with the vertex attributes ``node_axis`` and ``offset`` (the
+        vertex of M') and the edge attribute ``wall_normal`` (as seen from the edge's first
+        vertex in ``edges``). ImportError naming compas when it is not installed."""
+
 class EditSession:
     """Live editing of a honeycomb (the paper's three modes), with undo and redo. Each edit
     runs its solve to the end without the GIL and returns the honeycomb as it stands (its

@@ -512,6 +512,34 @@ impl HoneycombResult {
         py.detach(|| outcome.save(Path::new(&dir))).map_err(py_err)
     }
 
+    /// The honeycomb as a compas `Mesh` (M), with the vertex attributes `node_axis` and
+    /// `offset` (the vertex of M') and the edge attribute `wall_normal` (as seen from the
+    /// edge's first vertex in `edges`). Needs compas (ImportError naming it otherwise).
+    fn to_compas<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let compas = py.import("compas.datastructures").map_err(|e| {
+            pyo3::exceptions::PyImportError::new_err(format!(
+                "to_compas needs the compas package (pip install compas): {e}"
+            ))
+        })?;
+        let h = &self.honeycomb;
+        let xyz = |p: Vec3| [p.x, p.y, p.z];
+        let vertices: Vec<[f64; 3]> = h.base.vertices.iter().map(|&p| xyz(p)).collect();
+        let mesh = compas
+            .getattr("Mesh")?
+            .call_method1("from_vertices_and_faces", (vertices, &h.base.faces))?;
+        for (v, (&axis, &offset)) in h.axes.iter().zip(&h.offset.vertices).enumerate() {
+            mesh.call_method1("vertex_attribute", (v, "node_axis", xyz(axis)))?;
+            mesh.call_method1("vertex_attribute", (v, "offset", xyz(offset)))?;
+        }
+        for (e, &[a, b]) in h.edges.iter().enumerate() {
+            mesh.call_method1(
+                "edge_attribute",
+                ((a, b), "wall_normal", xyz(h.wall_normal(e))),
+            )?;
+        }
+        Ok(mesh)
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<honeycomb.Result: {} vertices, {} cells, {}>",

@@ -284,3 +284,20 @@ def test_edit_session_from_a_saved_structure(result, surface, tmp_path):
     moved = np.linalg.norm(edited.vertices - result.vertices, axis=1)
     assert np.median(moved) < 0.05 * scale
     assert moved.max() < 0.5 * scale
+
+
+def test_to_compas_and_back(surface, result):
+    compas = pytest.importorskip("compas.datastructures")
+    mesh = result.to_compas()
+    assert isinstance(mesh, compas.Mesh)
+    assert mesh.number_of_vertices() == len(result.vertices)
+    assert mesh.number_of_faces() == len(result.faces)
+    assert mesh.number_of_edges() == len(result.edges)
+    assert np.allclose(mesh.vertex_attribute(7, "node_axis"), result.node_axes[7])
+    assert np.allclose(mesh.vertex_attribute(7, "offset"), result.offset_vertices[7])
+    a, b = (int(i) for i in result.edges[11])
+    assert np.allclose(mesh.edge_attribute((a, b), "wall_normal"), result.wall_normals[11])
+    # A compas Mesh is a base mesh (or a surface) as it is.
+    again = honeycomb.optimize(mesh, surface)
+    assert again.faces == result.faces
+    assert again.is_honeycomb, again.why
