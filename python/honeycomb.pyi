@@ -74,6 +74,11 @@ class Result:
         vertex of M') and the edge attribute ``wall_normal`` (as seen from the edge's first
         vertex in ``edges``). ImportError naming compas when it is not installed."""
 
+    def to_3dm(self, path: Union[str, "os.PathLike[str]"]) -> None:
+        """Writes a Rhino 3dm file with the layers "M", "M'" (meshes; cells of more than
+        four sides as triangle fans) and "walls" (one quad per wall). ImportError naming
+        rhino3dm when it is not installed."""
+
 class EditSession:
     """Live editing of a honeycomb (the paper's three modes), with undo and redo. Each edit
     runs its solve to the end without the GIL and returns the honeycomb as it stands (its

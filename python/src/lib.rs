@@ -540,6 +540,54 @@ impl HoneycombResult {
         Ok(mesh)
     }
 
+    /// Writes a Rhino 3dm file: M and M' (cells of more than four sides as triangle fans) and
+    /// the wall quads, each on its own layer ("M", "M'", "walls"). Needs rhino3dm
+    /// (ImportError naming it otherwise).
+    fn to_3dm(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let r3 = py.import("rhino3dm").map_err(|e| {
+            pyo3::exceptions::PyImportError::new_err(format!(
+                "to_3dm needs the rhino3dm package (pip install rhino3dm): {e}"
+            ))
+        })?;
+        let file = r3.getattr("File3dm")?.call0()?;
+        let h = &self.honeycomb;
+        let walls = h.walls();
+        for (name, mesh) in [("M", &h.base), ("M'", &h.offset), ("walls", &walls)] {
+            let layer = r3.getattr("Layer")?.call0()?;
+            layer.setattr("Name", name)?;
+            let index = file.getattr("Layers")?.call_method1("Add", (layer,))?;
+            let rhino = r3.getattr("Mesh")?.call0()?;
+            let vertices = rhino.getattr("Vertices")?;
+            for p in &mesh.vertices {
+                vertices.call_method1("Add", (p.x, p.y, p.z))?;
+            }
+            let faces = rhino.getattr("Faces")?;
+            for face in &mesh.faces {
+                match face[..] {
+                    [a, b, c] => faces.call_method1("AddFace", (a, b, c))?,
+                    [a, b, c, d] => faces.call_method1("AddFace", (a, b, c, d))?,
+                    _ => {
+                        for k in 1..face.len() - 1 {
+                            faces.call_method1("AddFace", (face[0], face[k], face[k + 1]))?;
+                        }
+                        continue;
+                    }
+                };
+            }
+            let attributes = r3.getattr("ObjectAttributes")?.call0()?;
+            attributes.setattr("LayerIndex", index)?;
+            file.getattr("Objects")?
+                .call_method1("AddMesh", (rhino, attributes))?;
+        }
+        let path = path.to_string_lossy().into_owned();
+        if !file.call_method1("Write", (&path, 7))?.extract::<bool>()? {
+            return Err(PyOSError::new_err(format!(
+                "{path}: rhino3dm could not write it"
+            )));
+        }
+        Ok(())
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "<honeycomb.Result: {} vertices, {} cells, {}>",

@@ -301,3 +301,24 @@ def test_to_compas_and_back(surface, result):
     again = honeycomb.optimize(mesh, surface)
     assert again.faces == result.faces
     assert again.is_honeycomb, again.why
+
+
+def test_to_3dm(result, tmp_path):
+    rhino3dm = pytest.importorskip("rhino3dm")
+    result.to_3dm(tmp_path / "honeycomb.3dm")
+    model = rhino3dm.File3dm.Read(str(tmp_path / "honeycomb.3dm"))
+    assert [layer.Name for layer in model.Layers] == ["M", "M'", "walls"]
+    meshes = {model.Layers[o.Attributes.LayerIndex].Name: o.Geometry for o in model.Objects}
+    assert len(meshes["M"].Vertices) == len(result.vertices)
+    assert len(meshes["M'"].Vertices) == len(result.vertices)
+    assert len(meshes["walls"].Faces) == len(result.edges)
+
+
+@pytest.mark.parametrize("method, package", [("to_3dm", "rhino3dm"), ("to_compas", "compas.datastructures")])
+def test_a_missing_package_is_named(result, tmp_path, monkeypatch, method, package):
+    import sys
+
+    monkeypatch.setitem(sys.modules, package, None)
+    args = (tmp_path / "x.3dm",) if method == "to_3dm" else ()
+    with pytest.raises(ImportError, match=package.split(".")[0]):
+        getattr(result, method)(*args)
