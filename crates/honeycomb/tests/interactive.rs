@@ -335,3 +335,50 @@ fn undo_steps_know_their_author() {
     assert!(s.redo());
     assert_eq!((s.undo_author(), s.redo_author()), (Some(9), None));
 }
+
+/// A saved structure without its design surface (`optimize` without `--surface` writes none)
+/// is edited on M itself: the session's first solve keeps it a honeycomb on M, not pulling
+/// its zigzag boundary onto M's own boundary (which folded nodes over, 130 degrees off).
+#[test]
+fn a_structure_without_its_surface_stays_a_honeycomb() {
+    use honeycomb::generate::design_surface;
+    use honeycomb::{pipeline, PipelineOptions, Progress, Surface};
+    let surface = Surface::new(design_surface(Shape::Saddle)).unwrap();
+    let made = pipeline(
+        &surface,
+        &PipelineOptions::new(150),
+        &mut Progress::silent(),
+    )
+    .unwrap();
+    assert!(made.is_honeycomb());
+    let ws = Workspace::from_honeycomb(&made.honeycomb, None).unwrap();
+    let mut s = EditSession::new(ws, SessionOptions::default()).unwrap();
+    let view = s.view();
+    assert!(
+        view.measures.omega_max_deg < 1e-6,
+        "{}",
+        view.measures.omega_max_deg
+    );
+    assert!(
+        view.measures.delta_max < 1e-6,
+        "{}",
+        view.measures.delta_max
+    );
+    assert!(
+        view.measures.closeness_max < 0.05,
+        "{}",
+        view.measures.closeness_max
+    );
+    // And an edit there keeps it one.
+    let v = middle(&view.honeycomb);
+    s.apply(
+        Edit::SlideVertex {
+            vertex: v,
+            distance: 0.01,
+        },
+        None,
+    )
+    .unwrap();
+    s.finish().unwrap();
+    assert!(s.view().measures.omega_max_deg < 0.01);
+}

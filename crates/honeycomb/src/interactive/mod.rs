@@ -64,13 +64,17 @@ impl Workspace {
             crate::optimize::MAX_LENGTH,
             base.mean_edge_length(),
         )?;
+        let of_base = surface.is_none();
         let surface_mesh = surface.unwrap_or(base);
         // S in model units (for the measures) and in the solver's frame, one on each thread.
         let (model_surface, surface) = crate::parallel::both(
             || Surface::from_mesh(surface_mesh),
             || Surface::from_mesh(&frame.to_normalized(surface_mesh)),
         );
-        let (model_surface, surface) = (model_surface?, surface?);
+        let (mut model_surface, mut surface) = (model_surface?, surface?);
+        if of_base {
+            (model_surface, surface) = (model_surface.as_base(), surface.as_base());
+        }
         let normalized = frame.to_normalized(base);
         let normals = initial_normals(&normalized, &conn, &surface);
         Ok(Workspace {
@@ -262,6 +266,16 @@ impl EditSession {
         options.weights.validate()?;
         options.first_weights.validate()?;
         let (base, conn) = (&ws.base, &ws.conn);
+        // S is M itself: its zigzag boundary is not S's, as `optimize` has it.
+        let on_s = |w: &Weights| Weights {
+            boundary: if ws.surface.is_base() {
+                0.0
+            } else {
+                w.boundary
+            },
+            ..*w
+        };
+        let (first_weights, weights) = (on_s(&options.first_weights), on_s(&options.weights));
         let nv = base.vertices.len();
         let layout = Layout::new(nv, conn.num_edges());
         let solver_options = SolverOptions {
@@ -275,7 +289,7 @@ impl EditSession {
             base,
             conn,
             &*ws.surface,
-            &options.first_weights,
+            &first_weights,
             WallRows::Consistency,
             &base.vertices,
             &ws.normals,
@@ -298,7 +312,7 @@ impl EditSession {
             base,
             conn,
             Arc::clone(&ws.surface),
-            &options.weights,
+            &weights,
             WallRows::Planes,
             &vertices,
             &normals,
