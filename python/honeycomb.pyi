@@ -64,6 +64,20 @@ class Result:
     @property
     def why(self) -> Optional[str]:
         """Why this is not a honeycomb, in a sentence; None for a honeycomb."""
+    def export(
+        self,
+        dir: Union[str, "os.PathLike[str]"],
+        format: str = "all",
+        *,
+        units: str = "m",
+        up: str = "z",
+        material_thickness: Optional[float] = None,
+        sheet: Optional[str] = None,
+        label_height: Optional[float] = None,
+    ) -> List[str]:
+        """Files for fabrication and exchange into ``dir`` (replaced whole), as ``honeycomb
+        export`` writes them: glb, obj, dxf, svg, csv or all (several joined by commas).
+        Returns the names of the files written; a bad option raises ValueError naming it."""
     def save(self, dir: Union[str, "os.PathLike[str]"]) -> str:
         """Writes structure.json, base.obj, offset.obj, walls.obj, report.json, ... into
         ``dir`` for a honeycomb, else into ``dir.failed``; returns where they went. Only for

@@ -5,9 +5,10 @@
 //! and dicts. Keyword options go to [`Options`] through serde, so their names, defaults and
 //! checks are the library's.
 
-use honeycomb::export::read_structure;
+use honeycomb::export::{
+    export, parse_sheet, read_structure, ExportOptions, Format, Model, Units, Up,
+};
 use honeycomb::init::{CellSize, Method};
-use honeycomb::limits::check_solve_cells;
 use honeycomb::mesh::PolyMesh;
 use honeycomb::report::Report;
 use honeycomb::structure::{measure, Honeycomb};
@@ -295,12 +296,11 @@ fn pipeline(
     pipeline_options.init_chosen = pipeline_options.init.method == Method::Field;
     pipeline_options.options = options;
     let surface = mesh_arg(py, "surface", surface)?;
-    let outcome = run(py, progress, move |progress| {
-        let surface = surface_of(surface)?;
-        check_solve_cells(&pipeline_options.init, surface.source_mesh())?;
+    let surface = py.detach(|| surface_of(surface)).map_err(py_err)?;
+    let outcome = run(py, progress, |progress| {
         honeycomb::pipeline(&surface, &pipeline_options, progress)
     })?;
-    HoneycombResult::of(py, outcome)
+    HoneycombResult::of(py, outcome, Some(&surface))
 }
 
 /// Optimizes a hexagonal (trivalent) base mesh into a honeycomb on `surface` (default: the
@@ -322,15 +322,20 @@ fn optimize(
     let options = self::options(py, &kwargs)?;
     let base = mesh_arg(py, "base", base)?;
     let surface = surface.map(|s| mesh_arg(py, "surface", s)).transpose()?;
-    let outcome = run(py, progress, move |progress| {
-        let base = base_of(base)?;
-        let surface = match surface {
-            Some(s) => surface_of(s)?,
-            None => Surface::of_base(&base)?,
-        };
+    let (base, surface) = py
+        .detach(|| -> honeycomb::Result<_> {
+            let base = base_of(base)?;
+            let surface = match surface {
+                Some(s) => surface_of(s)?,
+                None => Surface::of_base(&base)?,
+            };
+            Ok((base, surface))
+        })
+        .map_err(py_err)?;
+    let outcome = run(py, progress, |progress| {
         honeycomb::optimize(&base, &surface, &options, progress)
     })?;
-    HoneycombResult::of(py, outcome)
+    HoneycombResult::of(py, outcome, Some(&surface))
 }
 
 /// Reads a structure directory written by `save` or by the CLI's `optimize` or `pipeline`
@@ -344,7 +349,7 @@ fn read(
     surface: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<HoneycombResult> {
     let surface = surface.map(|s| mesh_arg(py, "surface", s)).transpose()?;
-    let (honeycomb, measures) = py
+    let (honeycomb, measures, surface) = py
         .detach(|| -> honeycomb::Result<_> {
             let (h, _) = read_structure(&dir)?;
             let kept = dir.join("surface.obj");
@@ -354,7 +359,7 @@ fn read(
                 None => Surface::of_base(&BaseMesh::from_mesh(h.base.clone())?)?,
             };
             let measures = measure(&h, &surface);
-            Ok((h, measures))
+            Ok((h, measures, design_mesh(&surface)))
         })
         .map_err(py_err)?;
     let path = dir.join("report.json");
@@ -371,6 +376,7 @@ fn read(
         .map_err(|_| PyValueError::new_err(format!("{}: no honeycomb verdict", path.display())))?;
     Ok(HoneycombResult {
         honeycomb,
+        surface,
         outcome: None,
         is_honeycomb,
         why: None,
@@ -392,6 +398,8 @@ fn to_json<T: serde::Serialize>(py: Python<'_>, value: &T) -> PyResult<Py<PyAny>
 #[pyclass(name = "Result", module = "honeycomb", frozen)]
 struct HoneycombResult {
     honeycomb: Honeycomb,
+    /// The design surface it was made on (`None`: M itself), for `export`.
+    surface: Option<PolyMesh>,
     /// What `save` writes; `None` for a structure read back.
     outcome: Option<Outcome>,
     is_honeycomb: bool,
@@ -400,10 +408,20 @@ struct HoneycombResult {
     report: Py<PyAny>,
 }
 
+/// S's mesh unless S is the base mesh itself.
+fn design_mesh(surface: &Surface) -> Option<PolyMesh> {
+    (!surface.is_base()).then(|| surface.source_mesh().clone())
+}
+
 impl HoneycombResult {
-    fn of(py: Python<'_>, outcome: Outcome) -> PyResult<HoneycombResult> {
+    fn of(
+        py: Python<'_>,
+        outcome: Outcome,
+        surface: Option<&Surface>,
+    ) -> PyResult<HoneycombResult> {
         Ok(HoneycombResult {
             honeycomb: outcome.honeycomb.clone(),
+            surface: surface.and_then(design_mesh),
             is_honeycomb: outcome.is_honeycomb(),
             why: outcome.verdict.why.clone(),
             measures: to_json(py, &outcome.measures)?,
@@ -510,6 +528,41 @@ impl HoneycombResult {
             ));
         };
         py.detach(|| outcome.save(Path::new(&dir))).map_err(py_err)
+    }
+
+    /// Files for fabrication and exchange, as `honeycomb export` writes them into `dir`
+    /// (replaced whole): `format` is glb, obj, dxf, svg, csv or all, or several joined by
+    /// commas; `units` what one model unit is (mm, cm, m, in, ft); `up` z or y for OBJ;
+    /// `material_thickness` the plates' thickness (end cuts); `sheet` "WxH" for the panel
+    /// layout; `label_height` the labels' height. Returns the names of the files written.
+    #[pyo3(signature = (dir, format="all", *, units="m", up="z", material_thickness=None, sheet=None, label_height=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn export(
+        &self,
+        py: Python<'_>,
+        dir: PathBuf,
+        format: &str,
+        units: &str,
+        up: &str,
+        material_thickness: Option<f64>,
+        sheet: Option<&str>,
+        label_height: Option<f64>,
+    ) -> PyResult<Vec<String>> {
+        let options = ExportOptions {
+            formats: Format::parse_list(format).map_err(py_err)?,
+            units: Units::parse(units).map_err(py_err)?,
+            up: Up::parse(up).map_err(py_err)?,
+            material_thickness,
+            sheet: sheet.map(parse_sheet).transpose().map_err(py_err)?,
+            label_height,
+        };
+        let (honeycomb, surface) = (self.honeycomb.clone(), self.surface.clone());
+        py.detach(|| {
+            let model = Model::new(honeycomb, surface, options.units)?;
+            export(&model, &options, &dir, &[])
+        })
+        .map(|exported| exported.files)
+        .map_err(py_err)
     }
 
     /// The honeycomb as a compas `Mesh` (M), with the vertex attributes `node_axis` and
@@ -768,9 +821,16 @@ impl PyEditSession {
     /// The honeycomb as it stands, measured (no report: `report` is None).
     #[getter]
     fn result(&self, py: Python<'_>) -> PyResult<HoneycombResult> {
-        let view = py.detach(|| self.session.lock().unwrap().view());
+        let (view, surface) = py.detach(|| {
+            let session = self.session.lock().unwrap();
+            (
+                session.view(),
+                design_mesh(&session.workspace().model_surface),
+            )
+        });
         let is_honeycomb = Report::within_tolerances(&view.measures);
         Ok(HoneycombResult {
+            surface,
             is_honeycomb,
             why: (!is_honeycomb).then(|| Report::tolerance_summary(&view.measures, false)),
             measures: to_json(py, &view.measures)?,

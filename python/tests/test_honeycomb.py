@@ -238,6 +238,20 @@ def test_the_same_as_the_cli(surface, result, tmp_path):
     assert np.allclose(from_cli.vertices, result.vertices, atol=1e-9)
 
 
+def test_export_writes_the_workshop_files(result, tmp_path):
+    out = tmp_path / "export"
+    files = result.export(out, "glb,csv", units="mm", material_thickness=20)
+    assert {"structure.glb", "walls.csv", "nodes.csv", "bom.csv"} <= set(files)
+    for name in files:
+        assert (out / name).stat().st_size > 0, name
+    with open(out / "walls.csv") as f:
+        rows = f.read().splitlines()
+    assert len(rows) == 1 + result.edges.shape[0]
+    with pytest.raises(ValueError, match="units furlong"):
+        result.export(tmp_path / "bad", units="furlong")
+    assert not (tmp_path / "bad").exists()
+
+
 def test_edit_session_modes_undo_and_redo(result, surface, tmp_path):
     session = honeycomb.EditSession((result.vertices, result.faces), surface)
     start = session.result
@@ -271,9 +285,10 @@ def test_edit_session_modes_undo_and_redo(result, surface, tmp_path):
 
 
 def test_edit_session_from_a_saved_structure(result, surface, tmp_path):
-    # save() writes no surface.obj: the surface is given (without it the session edits on
-    # M itself, and its first solve gives no honeycomb: see the report of issue 25's work).
+    # save() writes no surface.obj: given, the session edits on S; without it, on M itself.
     result.save(tmp_path / "out")
+    on_m = honeycomb.EditSession.read(tmp_path / "out").result
+    assert on_m.is_honeycomb, on_m.why
     session = honeycomb.EditSession.read(tmp_path / "out", surface)
     edited = session.result
     assert edited.is_honeycomb, edited.why

@@ -3,9 +3,8 @@
 
 use honeycomb::export::read_structure;
 use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::init::{CellSize, InitOptions};
 use honeycomb::interactive::Workspace;
-use honeycomb::limits::{check_solve_cells, check_solve_vertices};
+use honeycomb::limits::check_solve_vertices;
 use honeycomb::mesh::{read_mesh, PolyMesh};
 use honeycomb::{pipeline, PipelineOptions, Progress, Surface, Walls};
 use honeycomb::{Error, Result};
@@ -79,9 +78,7 @@ impl Source {
                 Ok((Workspace::from_honeycomb(&h, surface.as_ref())?, Vec::new()))
             }
             Source::Surface { path, cells, walls } => {
-                let surface = read_mesh(path)?.mesh;
-                check_solve_cells(&InitOptions::new(CellSize::Cells(*cells)), &surface)?;
-                let surface = Surface::new(surface)?;
+                let surface = Surface::new(read_mesh(path)?.mesh)?;
                 // As `honeycomb pipeline` makes it, so that editing starts from a honeycomb.
                 let mut options = PipelineOptions::new(*cells);
                 options.options.walls = *walls;

@@ -155,6 +155,8 @@ pub fn pipeline(
     progress: &mut Progress,
 ) -> Result<Outcome> {
     let strategy = options.strategy(progress)?;
+    // Before any work: a cell count that no solve takes is refused at once.
+    crate::limits::check_solve_cells(&options.init, surface.source_mesh())?;
     let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
     let mut out = outcome(made.optimized, made.report, made.base, None);
     out.initialized = Some(made.initialized.report);

@@ -73,7 +73,7 @@ impl Workspace {
         );
         let (mut model_surface, mut surface) = (model_surface?, surface?);
         if of_base {
-            (model_surface, surface) = (model_surface.as_base(), surface.as_base());
+            (model_surface, surface) = (model_surface.marked_as_base(), surface.marked_as_base());
         }
         let normalized = frame.to_normalized(base);
         let normals = initial_normals(&normalized, &conn, &surface);

@@ -160,11 +160,11 @@ impl Surface {
     /// The base mesh itself as S, where no design surface is given: a solve keeps the
     /// vertices close to it but not its zigzag boundary on S's boundary.
     pub fn of_base(base: &crate::BaseMesh) -> Result<Surface> {
-        Ok(Surface::from_mesh(base.mesh())?.as_base())
+        Ok(Surface::from_mesh(base.mesh())?.marked_as_base())
     }
 
     /// This surface marked as a base mesh itself.
-    pub(crate) fn as_base(mut self) -> Surface {
+    pub(crate) fn marked_as_base(mut self) -> Surface {
         self.of_base = true;
         self
     }
