@@ -240,7 +240,8 @@ def test_the_same_as_the_cli(surface, result, tmp_path):
 
 def test_export_writes_the_workshop_files(result, tmp_path):
     out = tmp_path / "export"
-    files = result.export(out, "glb,csv", units="mm", material_thickness=20)
+    # Model units: the saddle spans 2 units, its edges about 0.1.
+    files = result.export(out, "glb,csv", units="m", material_thickness=0.005)
     assert {"structure.glb", "walls.csv", "nodes.csv", "bom.csv"} <= set(files)
     for name in files:
         assert (out / name).stat().st_size > 0, name
