@@ -28,7 +28,10 @@ class Cancelled(Exception):
     """The progress callback returned False: the work stopped before its next iteration."""
 
 class Result:
-    """A honeycomb: the mesh M on the surface, its offset M' along the node axes, its walls."""
+    """A honeycomb: the mesh M on the surface, its offset M' along the node axes, its walls.
+
+    Its arrays are made once and are read-only: every access returns the same array (copy
+    one to change it)."""
 
     @property
     def vertices(self) -> npt.NDArray[np.float64]:

@@ -375,6 +375,7 @@ fn read(
         .and_then(|v| v.extract::<bool>())
         .map_err(|_| PyValueError::new_err(format!("{}: no honeycomb verdict", path.display())))?;
     Ok(HoneycombResult {
+        arrays: Arrays::of(py, &honeycomb)?,
         honeycomb,
         surface,
         outcome: None,
@@ -398,6 +399,7 @@ fn to_json<T: serde::Serialize>(py: Python<'_>, value: &T) -> PyResult<Py<PyAny>
 #[pyclass(name = "Result", module = "honeycomb", frozen)]
 struct HoneycombResult {
     honeycomb: Honeycomb,
+    arrays: Arrays,
     /// The design surface it was made on (`None`: M itself), for `export`.
     surface: Option<PolyMesh>,
     /// What `save` writes; `None` for a structure read back.
@@ -420,6 +422,7 @@ impl HoneycombResult {
         surface: Option<&Surface>,
     ) -> PyResult<HoneycombResult> {
         Ok(HoneycombResult {
+            arrays: Arrays::of(py, &outcome.honeycomb)?,
             honeycomb: outcome.honeycomb.clone(),
             surface: surface.and_then(design_mesh),
             is_honeycomb: outcome.is_honeycomb(),
@@ -429,6 +432,44 @@ impl HoneycombResult {
             outcome: Some(outcome),
         })
     }
+}
+
+/// A result's arrays, made once: every access returns the same read-only array.
+struct Arrays {
+    vertices: Py<PyArray2<f64>>,
+    offset_vertices: Py<PyArray2<f64>>,
+    edges: Py<PyArray2<i64>>,
+    wall_normals: Py<PyArray2<f64>>,
+    node_axes: Py<PyArray2<f64>>,
+}
+
+impl Arrays {
+    fn of(py: Python<'_>, h: &Honeycomb) -> PyResult<Arrays> {
+        let edges: Vec<i64> = h
+            .edges
+            .iter()
+            .flat_map(|&[a, b]| [a as i64, b as i64])
+            .collect();
+        let edges = edges.into_pyarray(py).reshape([h.edges.len(), 2])?;
+        Ok(Arrays {
+            vertices: read_only(points_array(py, h.base.vertices.iter().copied())?)?,
+            offset_vertices: read_only(points_array(py, h.offset.vertices.iter().copied())?)?,
+            edges: read_only(edges)?,
+            wall_normals: read_only(points_array(
+                py,
+                (0..h.edges.len()).map(|e| h.wall_normal(e)),
+            )?)?,
+            node_axes: read_only(points_array(py, h.axes.iter().copied())?)?,
+        })
+    }
+}
+
+/// `array` with numpy's write flag off: it is shared by every access.
+fn read_only<T: numpy::Element>(array: Bound<'_, PyArray2<T>>) -> PyResult<Py<PyArray2<T>>> {
+    let kw = PyDict::new(array.py());
+    kw.set_item("write", false)?;
+    array.call_method("setflags", (), Some(&kw))?;
+    Ok(array.unbind())
 }
 
 /// Points as an (n, 3) float64 array.
@@ -443,16 +484,17 @@ fn points_array<'py>(
 
 #[pymethods]
 impl HoneycombResult {
-    /// The vertices of M, the mesh on the design surface: (n, 3) float64.
+    /// The vertices of M, the mesh on the design surface: (n, 3) float64, read-only (the same
+    /// array at every access; copy it to change it).
     #[getter]
-    fn vertices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        points_array(py, self.honeycomb.base.vertices.iter().copied())
+    fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.arrays.vertices.bind(py).clone()
     }
 
-    /// The vertices of M', at the thickness along the node axes: (n, 3) float64.
+    /// The vertices of M', at the thickness along the node axes: (n, 3) float64, read-only.
     #[getter]
-    fn offset_vertices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        points_array(py, self.honeycomb.offset.vertices.iter().copied())
+    fn offset_vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.arrays.offset_vertices.bind(py).clone()
     }
 
     /// The cells, each a list of vertex indices in order (boundary cells may have fewer than
@@ -462,30 +504,24 @@ impl HoneycombResult {
         PyList::new(py, &self.honeycomb.base.faces)
     }
 
-    /// The edges (one wall each): (m, 2) int64 vertex indices.
+    /// The edges (one wall each): (m, 2) int64 vertex indices, read-only.
     #[getter]
-    fn edges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
-        let m = self.honeycomb.edges.len();
-        let flat: Vec<i64> = self
-            .honeycomb
-            .edges
-            .iter()
-            .flat_map(|&[a, b]| [a as i64, b as i64])
-            .collect();
-        flat.into_pyarray(py).reshape([m, 2])
+    fn edges<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<i64>> {
+        self.arrays.edges.bind(py).clone()
     }
 
-    /// The unit normal of each edge's wall (as seen from its first vertex): (m, 3) float64.
+    /// The unit normal of each edge's wall (as seen from its first vertex): (m, 3) float64,
+    /// read-only.
     #[getter]
-    fn wall_normals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let h = &self.honeycomb;
-        points_array(py, (0..h.edges.len()).map(|e| h.wall_normal(e)))
+    fn wall_normals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.arrays.wall_normals.bind(py).clone()
     }
 
-    /// The unit node axis at each vertex, along which the walls meet: (n, 3) float64.
+    /// The unit node axis at each vertex, along which the walls meet: (n, 3) float64,
+    /// read-only.
     #[getter]
-    fn node_axes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        points_array(py, self.honeycomb.axes.iter().copied())
+    fn node_axes<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.arrays.node_axes.bind(py).clone()
     }
 
     /// The distance between M and M' along the node axes (model units).
@@ -834,6 +870,7 @@ impl PyEditSession {
             is_honeycomb,
             why: (!is_honeycomb).then(|| Report::tolerance_summary(&view.measures, false)),
             measures: to_json(py, &view.measures)?,
+            arrays: Arrays::of(py, &view.honeycomb)?,
             honeycomb: view.honeycomb,
             outcome: None,
             report: py.None(),

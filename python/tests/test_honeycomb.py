@@ -70,6 +70,11 @@ def test_pipeline_on_arrays_is_a_honeycomb(result):
     assert result.report["omega_max_deg"] == result.measures["omega_max_deg"]
     assert "honeycomb" in repr(result)
 
+    # The arrays are made once: every access returns the same read-only array.
+    assert result.vertices is result.vertices
+    with pytest.raises(ValueError):
+        result.vertices[0, 0] = 1.0
+
 
 def test_lists_paths_and_arrays_give_the_same_result(surface, result, tmp_path):
     vertices, faces = surface
