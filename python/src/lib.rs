@@ -8,7 +8,7 @@
 use honeycomb::export::{
     export, parse_sheet, read_structure, ExportOptions, Format, Model, Units, Up,
 };
-use honeycomb::init::{CellSize, Method};
+use honeycomb::init::{Align, BoundaryMode, CellSize, Flattener, Method};
 use honeycomb::mesh::PolyMesh;
 use honeycomb::report::Report;
 use honeycomb::structure::{measure, Honeycomb};
@@ -252,13 +252,15 @@ where
 /// `surface`: a path (OBJ, OFF, PLY), a `(vertices, faces)` pair or a compas Mesh. `walls`:
 /// "across", "uniform", "free" or a direction (x, y, z) for every node axis. `cells`:
 /// about this many cells (or `edge_length` in model units); `method`: "flatten" or "field";
-/// `seed` shifts the lattice. Other keyword arguments are the options of `honeycomb
+/// `flatten`: "arap", "lscm" or "project" (default: the pipeline's choice); `boundary`:
+/// "trim" or "keep" the cells S's border cuts; `align`: "boundary", "none" or a polyline
+/// file of strokes; `seed` shifts the lattice (as `honeycomb pipeline`'s flags). Other keyword arguments are the options of `honeycomb
 /// optimize` by their field names (`w_fair` for `--w-fair`). `progress(step: dict)` is
 /// called at every step; returning False stops the work (`honeycomb.Cancelled`).
 #[pyfunction]
 #[pyo3(
-    signature = (surface, cells=1500, walls=None, *, edge_length=None, method="flatten", seed=0, progress=None, **options),
-    text_signature = "(surface, cells=1500, walls='across', *, edge_length=None, method='flatten', seed=0, progress=None, **options)"
+    signature = (surface, cells=1500, walls=None, *, edge_length=None, method="flatten", flatten=None, boundary="trim", align="boundary", seed=0, progress=None, **options),
+    text_signature = "(surface, cells=1500, walls='across', *, edge_length=None, method='flatten', flatten=None, boundary='trim', align='boundary', seed=0, progress=None, **options)"
 )]
 #[allow(clippy::too_many_arguments)]
 fn pipeline(
@@ -268,6 +270,9 @@ fn pipeline(
     walls: Option<&Bound<'_, PyAny>>,
     edge_length: Option<f64>,
     method: &str,
+    flatten: Option<&str>,
+    boundary: &str,
+    align: &str,
     seed: u64,
     progress: Option<Py<PyAny>>,
     options: Option<&Bound<'_, PyDict>>,
@@ -283,17 +288,25 @@ fn pipeline(
         Some(l) => CellSize::EdgeLength(l),
         None => CellSize::Cells(cells),
     };
-    pipeline_options.init.method = match method {
-        "flatten" => Method::Flatten,
-        "field" => Method::Field,
-        _ => {
-            return Err(PyValueError::new_err(format!(
-                "invalid option method {method}: expected flatten or field"
-            )))
+    let named =
+        |field: &str, m: String| PyValueError::new_err(format!("invalid option {field}: {m}"));
+    let init = &mut pipeline_options.init;
+    init.method = method.parse::<Method>().map_err(|m| named("method", m))?;
+    if let Some(f) = flatten {
+        if init.method == Method::Field {
+            return Err(named(
+                "flatten",
+                "picks how method flatten flattens; method field does not flatten".into(),
+            ));
         }
-    };
-    pipeline_options.init.seed = seed;
-    pipeline_options.init_chosen = pipeline_options.init.method == Method::Field;
+        init.flattener = f.parse::<Flattener>().map_err(|m| named("flatten", m))?;
+    }
+    init.boundary = boundary
+        .parse::<BoundaryMode>()
+        .map_err(|m| named("boundary", m))?;
+    init.align = Align::parse(align).map_err(py_err)?;
+    init.seed = seed;
+    pipeline_options.init_chosen = flatten.is_some() || init.method == Method::Field;
     pipeline_options.options = options;
     let surface = mesh_arg(py, "surface", surface)?;
     let surface = py.detach(|| surface_of(surface)).map_err(py_err)?;

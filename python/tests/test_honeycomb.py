@@ -76,6 +76,12 @@ def test_pipeline_on_arrays_is_a_honeycomb(result):
         result.vertices[0, 0] = 1.0
 
 
+def test_the_pipeline_takes_the_base_mesh_options_of_the_cli(surface):
+    chosen = honeycomb.pipeline(surface, cells=150, flatten="lscm", align="none", seed=1)
+    assert chosen.is_honeycomb, chosen.why
+    assert abs(len(chosen.faces) / 150 - 1) < 0.25
+
+
 def test_lists_paths_and_arrays_give_the_same_result(surface, result, tmp_path):
     vertices, faces = surface
     as_lists = honeycomb.pipeline((vertices.tolist(), faces.tolist()), cells=CELLS)
@@ -116,6 +122,9 @@ def test_optimize_on_its_own_base(result):
         ("walls", "sideways", "walls"),
         ("thickness", -0.1, "thickness"),
         ("method", "magic", "method"),
+        ("flatten", "origami", "flatten"),
+        ("boundary", "fold", "boundary"),
+        ("align", "no/such/strokes.txt", "align"),
     ],
 )
 def test_a_bad_option_raises_value_error_naming_it(surface, option, value, named):

@@ -4,8 +4,7 @@ use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs};
 use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
-    init, read_strokes, Align, BoundaryMode, CellSize, Flattener, InitOptions, InitReport,
-    Initialized, Method,
+    init, Align, BoundaryMode, CellSize, Flattener, InitOptions, InitReport, Initialized, Method,
 };
 use honeycomb::limits::check_solve_cells;
 use honeycomb::mesh::{write_mesh, OutputDir, Outputs, PolyMesh};
@@ -60,17 +59,7 @@ impl InitArgs {
                     .into(),
             ));
         }
-        let align = match self.align.as_str() {
-            "boundary" => Align::Boundary,
-            "none" => Align::None,
-            path => Align::Strokes(read_strokes(Path::new(path)).map_err(|e| match e {
-                Error::Io { path, source } => Error::Parameter(format!(
-                    "--align {}: expected boundary, none or a polyline file ({source})",
-                    path.display()
-                )),
-                e => e,
-            })?),
-        };
+        let align = Align::parse(&self.align)?;
         let options = InitOptions {
             size,
             method: self.method,

@@ -95,6 +95,26 @@ pub enum Align {
     Strokes(Vec<Vec<Vec3>>),
 }
 
+impl Align {
+    /// `boundary`, `none`, or the path of a polyline file of strokes ([`read_strokes`]).
+    pub fn parse(text: &str) -> Result<Align> {
+        match text {
+            "boundary" => Ok(Align::Boundary),
+            "none" => Ok(Align::None),
+            path => read_strokes(std::path::Path::new(path))
+                .map(Align::Strokes)
+                .map_err(|e| match e {
+                    Error::Io { path, source } => Error::option(
+                        "align",
+                        path.display(),
+                        format!("expected boundary, none or a polyline file ({source})"),
+                    ),
+                    e => e,
+                }),
+        }
+    }
+}
+
 /// What happens to cells that S's boundary cuts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
