@@ -22,7 +22,7 @@ fn jitter(i: usize) -> f64 {
 }
 
 /// A small saddle patch in the normalized frame, as `optimize` sees it.
-fn saddle() -> (Frame, PolyMesh, Surface, Connectivity) {
+pub(crate) fn saddle() -> (Frame, PolyMesh, Surface, Connectivity) {
     let (base, surface) = lifted_hex_patch(Shape::Saddle, 200);
     let frame = Frame::of(&base);
     let mesh = frame.to_normalized(&base);

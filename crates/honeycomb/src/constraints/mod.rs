@@ -40,4 +40,4 @@ pub use wall_consistency::WallConsistency;
 pub use wall_plane::WallPlane;
 
 #[cfg(test)]
-mod jacobian_tests;
+pub(crate) mod jacobian_tests;

@@ -283,20 +283,9 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::{lifted_hex_patch, Shape};
-    use crate::optimize::{
-        AxesOptions, Frame, OptimizeOptions, ParallelOptions, Problem, QuadOptions,
-    };
+    use crate::constraints::jacobian_tests::saddle;
 
-    /// A small saddle patch in the normalized frame, as `optimize` sees it.
-    fn saddle() -> (Frame, PolyMesh, Surface, Connectivity) {
-        let (base, surface) = lifted_hex_patch(Shape::Saddle, 200);
-        let frame = Frame::of(&base);
-        let mesh = frame.to_normalized(&base);
-        let surface = Surface::from_mesh(&frame.to_normalized(&surface)).unwrap();
-        let conn = Connectivity::build(&mesh).unwrap();
-        (frame, mesh, surface, conn)
-    }
+    use crate::optimize::{AxesOptions, OptimizeOptions, ParallelOptions, Problem, QuadOptions};
 
     /// The blocks' names, after checking that they tile `0..len` in order.
     fn tiling(blocks: &[Block], len: usize) -> Vec<&'static str> {

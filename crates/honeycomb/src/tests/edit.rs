@@ -1,10 +1,10 @@
 //! Wall translations keep a honeycomb a honeycomb.
 
+use super::guided_to_the_normals;
 use crate::edit::{reciprocal, resize_cell, subdivide, translate_walls};
 use crate::generate::{lifted_hex_patch, Shape};
 use crate::mesh::Connectivity;
-use crate::optimize::{optimize, OptimizeOptions, Weights};
-use crate::solve::SolverOptions;
+use crate::optimize::{optimize, OptimizeOptions};
 use crate::structure::{measure, Honeycomb};
 use crate::surface::Surface;
 
@@ -27,18 +27,7 @@ fn honeycomb() -> (Honeycomb, Connectivity, Surface) {
 /// A honeycomb whose axes all differ: walls across a cylinder (guided towards its normals).
 fn tilted_honeycomb() -> (Honeycomb, Connectivity, Surface) {
     let (base, surface) = lifted_hex_patch(Shape::Cylinder, 600);
-    let options = OptimizeOptions {
-        weights: Weights {
-            guide: 3.0,
-            fairness: 0.0,
-            ..Weights::default()
-        },
-        solver: SolverOptions {
-            max_iterations: 15,
-            ..SolverOptions::default()
-        },
-        ..OptimizeOptions::default()
-    };
+    let options = guided_to_the_normals();
     let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).unwrap();
     (
         opt.honeycomb,

@@ -7,7 +7,26 @@ mod optimize;
 mod quads;
 mod variants;
 
+use crate::optimize::{OptimizeOptions, Weights};
+use crate::solve::SolverOptions;
 use std::path::PathBuf;
+
+/// The guided projection with the node axes guided towards S's normals and no opposite-wall
+/// fairness, 15 iterations: walls across a developable such as a cylinder.
+fn guided_to_the_normals() -> OptimizeOptions {
+    OptimizeOptions {
+        weights: Weights {
+            guide: 3.0,
+            fairness: 0.0,
+            ..Weights::default()
+        },
+        solver: SolverOptions {
+            max_iterations: 15,
+            ..SolverOptions::default()
+        },
+        ..OptimizeOptions::default()
+    }
+}
 
 /// `../shared/data` beside the repository, when it is there (tests that read it skip otherwise).
 fn shared_data() -> Option<PathBuf> {

@@ -1,8 +1,9 @@
 //! End to end: hex meshes lifted onto analytic surfaces become honeycombs.
 
+use super::guided_to_the_normals;
 use crate::generate::{hex_disk, lifted_hex_patch, radius_for_vertices, HeightField, Shape};
 use crate::mesh::PolyMesh;
-use crate::optimize::{optimize, without_cells, OptimizeOptions, WallNormals, Weights};
+use crate::optimize::{optimize, without_cells, OptimizeOptions, WallNormals};
 use crate::solve::SolverOptions;
 use crate::structure::{measure, quad_planarity, Measures};
 use crate::surface::Surface;
@@ -150,18 +151,7 @@ fn guided_axes_follow_the_normals_of_a_cylinder() {
     // A cylinder is developable: its normals can be node axes (paper Property 3), and the guide
     // finds that honeycomb instead of the vertical extrusion.
     let (base, surface) = lifted_hex_patch(Shape::Cylinder, 1500);
-    let options = OptimizeOptions {
-        weights: Weights {
-            guide: 3.0,
-            fairness: 0.0,
-            ..Weights::default()
-        },
-        solver: SolverOptions {
-            max_iterations: 15,
-            ..SolverOptions::default()
-        },
-        ..OptimizeOptions::default()
-    };
+    let options = guided_to_the_normals();
     let opt = optimize(&base, Some(&surface), &options, &mut |_| {}).expect("optimize");
     let s = Surface::from_mesh(&surface).unwrap();
     let m = measure(&opt.honeycomb, &s);
