@@ -144,33 +144,67 @@ impl Variant {
     /// The variant's weights as a solve takes them, by field: the ones given, else the
     /// defaults.
     pub fn weights(&self) -> Vec<(&'static str, f64)> {
-        let (parallel, quads) = (ParallelOptions::default(), QuadOptions::default());
-        match self {
-            Variant::Plain => Vec::new(),
-            Variant::Parallel {
-                w_parallel,
-                w_depth,
-                ..
-            } => vec![
-                ("w_parallel", w_parallel.unwrap_or(parallel.weight)),
-                ("w_depth", w_depth.unwrap_or(parallel.depth_weight)),
-            ],
-            Variant::Quads {
-                w_cons_faces,
-                w_fair_zig,
-                w_fair_str,
-                ..
-            } => vec![
-                ("w_cons_faces", w_cons_faces.unwrap_or(quads.w_cons_faces)),
-                ("w_fair_zig", w_fair_zig.unwrap_or(quads.w_fair_zigzag)),
-                ("w_fair_str", w_fair_str.unwrap_or(quads.w_fair_straight)),
-            ],
-            Variant::Axes { w_axes, .. } => {
-                vec![("w_axes", w_axes.unwrap_or(AxesOptions::DEFAULT_WEIGHT))]
-            }
-            Variant::Shading { w_axes, .. } => {
-                vec![("w_axes", w_axes.unwrap_or(AxesOptions::SHADING_WEIGHT))]
-            }
+        if let Some(p) = self.parallel_options() {
+            return vec![("w_parallel", p.weight), ("w_depth", p.depth_weight)];
+        }
+        if let Some(q) = self.quad_options() {
+            return vec![
+                ("w_cons_faces", q.w_cons_faces),
+                ("w_fair_zig", q.w_fair_zigzag),
+                ("w_fair_str", q.w_fair_straight),
+            ];
+        }
+        self.axes_weight()
+            .map(|w| vec![("w_axes", w)])
+            .unwrap_or_default()
+    }
+
+    /// Parallel meshes as the solver takes them, the defaults filled in (not checked).
+    fn parallel_options(&self) -> Option<ParallelOptions> {
+        let Variant::Parallel {
+            depth,
+            w_parallel,
+            w_depth,
+        } = *self
+        else {
+            return None;
+        };
+        let defaults = ParallelOptions::default();
+        Some(ParallelOptions {
+            depth,
+            weight: w_parallel.unwrap_or(defaults.weight),
+            depth_weight: w_depth.unwrap_or(defaults.depth_weight),
+        })
+    }
+
+    /// Quads as the solver takes them, the defaults filled in (not checked).
+    fn quad_options(&self) -> Option<QuadOptions> {
+        let Variant::Quads {
+            pattern,
+            quad_direction,
+            w_cons_faces,
+            w_fair_zig,
+            w_fair_str,
+        } = *self
+        else {
+            return None;
+        };
+        let defaults = QuadOptions::default();
+        Some(QuadOptions {
+            pattern,
+            direction: quad_direction,
+            w_cons_faces: w_cons_faces.unwrap_or(defaults.w_cons_faces),
+            w_fair_zigzag: w_fair_zig.unwrap_or(defaults.w_fair_zigzag),
+            w_fair_straight: w_fair_str.unwrap_or(defaults.w_fair_straight),
+        })
+    }
+
+    /// The prescribed axes' weight, given or the default of prescribed axes or of shading.
+    fn axes_weight(&self) -> Option<f64> {
+        match *self {
+            Variant::Axes { w_axes, .. } => Some(w_axes.unwrap_or(AxesOptions::DEFAULT_WEIGHT)),
+            Variant::Shading { w_axes, .. } => Some(w_axes.unwrap_or(AxesOptions::SHADING_WEIGHT)),
+            _ => None,
         }
     }
 }
@@ -266,10 +300,11 @@ impl Options {
 
     /// The prescribed axes' weight, given or the variant's default.
     fn check_axes_weight(&self) -> Result<()> {
-        for (field, w) in self.variant.weights() {
-            crate::optimize::check_weight(field, w, false)?;
-        }
-        Ok(())
+        let w = self
+            .variant
+            .axes_weight()
+            .unwrap_or(AxesOptions::DEFAULT_WEIGHT);
+        crate::optimize::check_weight("w_axes", w, false)
     }
 
     /// The weights as the solver takes them.
@@ -286,42 +321,15 @@ impl Options {
     }
 
     fn parallel(&self) -> Result<Option<ParallelOptions>> {
-        let Variant::Parallel { depth, .. } = self.variant else {
-            return Ok(None);
-        };
-        let [(_, weight), (_, depth_weight)] = self.variant.weights()[..] else {
-            unreachable!("a parallel variant has two weights");
-        };
-        let p = ParallelOptions {
-            depth,
-            weight,
-            depth_weight,
-        };
-        p.validate()?;
-        Ok(Some(p))
+        let p = self.variant.parallel_options();
+        p.as_ref().map(ParallelOptions::validate).transpose()?;
+        Ok(p)
     }
 
     fn quads(&self) -> Result<Option<QuadOptions>> {
-        let Variant::Quads {
-            pattern,
-            quad_direction,
-            w_cons_faces,
-            w_fair_zig,
-            w_fair_str,
-        } = self.variant
-        else {
-            return Ok(None);
-        };
-        let defaults = QuadOptions::default();
-        let q = QuadOptions {
-            pattern,
-            direction: quad_direction,
-            w_cons_faces: w_cons_faces.unwrap_or(defaults.w_cons_faces),
-            w_fair_zigzag: w_fair_zig.unwrap_or(defaults.w_fair_zigzag),
-            w_fair_straight: w_fair_str.unwrap_or(defaults.w_fair_straight),
-        };
-        q.validate()?;
-        Ok(Some(q))
+        let q = self.variant.quad_options();
+        q.as_ref().map(QuadOptions::validate).transpose()?;
+        Ok(q)
     }
 
     /// The solver's options for what does not depend on the meshes (no prescribed axes yet).
@@ -352,7 +360,10 @@ impl Options {
         surface: &Surface,
     ) -> Result<OptimizeOptions> {
         let mut options = self.optimize_options()?;
-        let weight = self.variant.weights().first().map_or(0.0, |&(_, w)| w);
+        let weight = self
+            .variant
+            .axes_weight()
+            .unwrap_or(AxesOptions::DEFAULT_WEIGHT);
         let axes = match &self.variant {
             Variant::Axes { axes, .. } => Some(AxesOptions {
                 targets: axes.clone(),
