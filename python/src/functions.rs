@@ -3,7 +3,7 @@
 use crate::inputs::{base_of, mesh_arg, surface_of};
 use crate::progress::run;
 use crate::py_err;
-use crate::result::{design_mesh, json_loads, to_json, Arrays, HoneycombResult};
+use crate::result::{json_loads, to_json, Arrays, HoneycombResult};
 use honeycomb::export::read_structure;
 use honeycomb::init::{Align, BoundaryMode, CellSize, Flattener, Method};
 use honeycomb::structure::measure;
@@ -138,7 +138,7 @@ pub(crate) fn read(
                 None => Surface::of_base(&BaseMesh::from_mesh(h.base.clone())?)?,
             };
             let measures = measure(&h, &surface);
-            Ok((h, measures, design_mesh(&surface)))
+            Ok((h, measures, surface.design_mesh().cloned()))
         })
         .map_err(py_err)?;
     let path = dir.join("report.json");

@@ -35,11 +35,6 @@ pub(crate) struct HoneycombResult {
     pub(crate) report: Py<PyAny>,
 }
 
-/// S's mesh unless S is the base mesh itself.
-pub(crate) fn design_mesh(surface: &Surface) -> Option<PolyMesh> {
-    (!surface.is_base()).then(|| surface.source_mesh().clone())
-}
-
 impl HoneycombResult {
     pub(crate) fn of(
         py: Python<'_>,
@@ -49,7 +44,7 @@ impl HoneycombResult {
         Ok(HoneycombResult {
             arrays: Arrays::of(py, &outcome.honeycomb)?,
             honeycomb: outcome.honeycomb.clone(),
-            surface: surface.and_then(design_mesh),
+            surface: surface.and_then(|s| s.design_mesh().cloned()),
             is_honeycomb: outcome.is_honeycomb(),
             why: outcome.verdict.why.clone(),
             measures: to_json(py, &outcome.measures)?,

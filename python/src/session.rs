@@ -2,7 +2,7 @@
 
 use crate::inputs::{base_of, mesh_arg, point, surface_of};
 use crate::py_err;
-use crate::result::{design_mesh, to_json, Arrays, HoneycombResult};
+use crate::result::{to_json, Arrays, HoneycombResult};
 use honeycomb::export::read_structure;
 use honeycomb::report::Report;
 use honeycomb::{Edit, EditSession, SessionOptions, Surface, Workspace};
@@ -171,7 +171,7 @@ impl PyEditSession {
             let session = self.session.lock().unwrap();
             (
                 session.view(),
-                design_mesh(&session.workspace().model_surface),
+                session.workspace().model_surface.design_mesh().cloned(),
             )
         });
         let is_honeycomb = Report::within_tolerances(&view.measures);

@@ -1,6 +1,6 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{finish, load, name_file, print_notes, verdict, SolveArgs};
+use crate::optimize::{finish, load, print_notes, SolveArgs};
 use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
@@ -106,7 +106,7 @@ pub fn run(args: Args) -> Result<()> {
     let output = Output::from_flags(args.quiet, args.json);
     let options = args.init.options()?;
     let surface = load(&args.surface, output)?;
-    let made = make(&surface, &options, output).map_err(|e| name_file(&args.surface, e))?;
+    let made = make(&surface, &options, output).map_err(|e| e.about_file(&args.surface))?;
     // Both or neither: a mesh without the report asked for looks like a finished run.
     let mut outputs = Outputs::new();
     outputs.mesh(&args.output, &made.base)?;
@@ -190,8 +190,9 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     };
     let output = args.opts.output();
     let surface = load(&args.surface, output)?;
-    check_solve_cells(&options.init, &surface).map_err(|e| name_file(&args.surface, e))?;
-    let surface = Surface::new(surface).map_err(|e| name_file(&args.surface, e))?;
+    // The pipeline checks it too; here it is refused before -o's parents are made.
+    check_solve_cells(&options.init, &surface).map_err(|e| e.about_file(&args.surface))?;
+    let surface = Surface::new(surface).map_err(|e| e.about_file(&args.surface))?;
     let strokes = Path::new(&args.init.align);
     let mut inputs = vec![args.surface.as_path()];
     if strokes.is_file() {
@@ -217,9 +218,9 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
         s.finish();
     }
     bar.finish();
-    let mut outcome = result.map_err(|e| name_file(&args.surface, e))?;
-    outcome.report.notes.extend(out.note(verdict(&outcome)));
-    let dir = &out.finish(verdict(&outcome), |dir| {
+    let mut outcome = result.map_err(|e| e.about_file(&args.surface))?;
+    outcome.report.notes.extend(out.note(outcome.placement()));
+    let dir = &out.finish(outcome.placement(), |dir| {
         write_mesh(&dir.join("surface.obj"), surface.source_mesh())?;
         outcome.write(dir)
     })?;

@@ -4,9 +4,7 @@ use crate::progress::{IterationBar, Output};
 use honeycomb::analysis::read_directions;
 use honeycomb::error::rounded;
 use honeycomb::geometry::{parse_direction, read_axes};
-use honeycomb::mesh::{
-    check_base_near_surface, nonconvex_faces, read_mesh, OutputDir, PolyMesh, Verdict,
-};
+use honeycomb::mesh::{check_base_near_surface, nonconvex_faces, read_mesh, OutputDir, PolyMesh};
 use honeycomb::report::Report;
 use honeycomb::structure::QuadPattern;
 use honeycomb::{
@@ -345,23 +343,14 @@ pub fn optimize_and_write(
     );
     bar.finish();
     let mut outcome = result?;
-    outcome.report.notes.extend(out.note(verdict(&outcome)));
-    let dir = out.finish(verdict(&outcome), |dir| {
+    outcome.report.notes.extend(out.note(outcome.placement()));
+    let dir = out.finish(outcome.placement(), |dir| {
         outcome.write(dir)?;
         inputs(dir)
     })?;
     print_notes(&outcome.report.notes, output);
     finish(&outcome, &dir, output, args.cell_points, nonconvex.len())?;
     Ok(outcome.report)
-}
-
-/// A honeycomb's outputs take DIR's place; any other go to DIR.failed for inspection.
-pub fn verdict(outcome: &Outcome) -> Verdict {
-    if outcome.is_honeycomb() {
-        Verdict::Passed
-    } else {
-        Verdict::Failed
-    }
 }
 
 /// Notes of what a run changed on the way, on stderr (report.json has them too).
@@ -456,13 +445,13 @@ pub fn run(args: Args) -> Result<()> {
     args.opts.options()?;
     let output = args.opts.output();
     let base =
-        BaseMesh::from_mesh(load(&args.base, output)?).map_err(|e| name_file(&args.base, e))?;
+        BaseMesh::from_mesh(load(&args.base, output)?).map_err(|e| e.about_file(&args.base))?;
     let surface = match &args.opts.surface {
         Some(path) => {
-            let surface = Surface::new(load(path, output)?).map_err(|e| name_file(path, e))?;
+            let surface = Surface::new(load(path, output)?).map_err(|e| e.about_file(path))?;
             // A bounding-box check (optimize makes it too): here the message can name the file.
             check_base_near_surface(base.mesh(), surface.source_mesh())
-                .map_err(|e| name_file(path, e))?;
+                .map_err(|e| e.about_file(path))?;
             surface
         }
         None => Surface::of_base(&base)?,
@@ -486,9 +475,4 @@ pub fn run(args: Args) -> Result<()> {
         |_| Ok(()),
     )
     .map(|_| ())
-}
-
-/// Prefixes an error about a mesh with the file it is about.
-pub fn name_file(path: &Path, e: Error) -> Error {
-    e.about_file(path)
 }

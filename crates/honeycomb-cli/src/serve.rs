@@ -1,6 +1,5 @@
 //! `honeycomb serve`: the interactive editor in the browser (a thin front over honeycomb-serve).
 
-use crate::optimize::name_file;
 use crate::progress::{Output, Spinner};
 use honeycomb::error::rounded;
 use honeycomb::generate::Shape;
@@ -118,7 +117,7 @@ pub fn run(args: Args) -> Result<()> {
     let server = start(&source, options);
     spinner.finish();
     let server = match &args.input {
-        Some(path) => server.map_err(|e| name_file(path, e))?,
+        Some(path) => server.map_err(|e| e.about_file(path))?,
         None => server?,
     };
     crate::optimize::print_notes(&server.notes, output);

@@ -120,8 +120,9 @@ impl Outcome {
         out.finish(self.placement(), |d| self.write(d))
     }
 
-    /// Where the outputs of this result belong ([`OutputDir::finish`]).
-    pub(crate) fn placement(&self) -> Placement {
+    /// Where the outputs of this result belong ([`OutputDir::finish`]): a honeycomb's take
+    /// `DIR`'s place, any other go to `DIR.failed` for inspection.
+    pub fn placement(&self) -> Placement {
         if self.verdict.honeycomb {
             Placement::Passed
         } else {

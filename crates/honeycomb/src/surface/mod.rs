@@ -180,7 +180,7 @@ impl Surface {
     }
 
     /// The design surface's mesh to solve on: `None` where S is the base mesh itself.
-    pub(crate) fn design_mesh(&self) -> Option<&PolyMesh> {
+    pub fn design_mesh(&self) -> Option<&PolyMesh> {
         (!self.of_base).then_some(&self.source)
     }
 
