@@ -39,7 +39,10 @@ pub struct Args {
     #[arg(long, conflicts_with = "cell_points")]
     pub per_edge: bool,
     /// Instead of the sizes: one row per variant of the paper's section 4 (parallel meshes,
-    /// quads, shading, prescribed axes, minimum edge length) on its test subject.
+    /// quads, shading, prescribed axes, minimum edge length) on its test subject. With
+    /// --roofs: one row per surface and variant of the pipeline (quads zigzag and alternating,
+    /// parallel meshes): iterations, seconds, omega, delta, delta_face before and after
+    /// capping or beta, closeness.
     #[arg(long)]
     pub variants: bool,
     /// Instead of the sizes: `init` (flatten with ARAP, and field) on a 40k-triangle roof, for 2000 and
@@ -54,7 +57,7 @@ pub struct Args {
     /// DIR (default ../shared/data, skipped with a reason when absent), one row each: cells,
     /// seconds, iterations, omega_max, delta_max, the axes' angle to S's normals (mean, p95)
     /// against parallel axes', edge-length cv.
-    #[arg(long, value_name = "DIR", num_args = 0..=1, conflicts_with_all = ["variants", "init", "serve"])]
+    #[arg(long, value_name = "DIR", num_args = 0..=1, conflicts_with_all = ["init", "serve"])]
     pub roofs: Option<Option<PathBuf>>,
     /// With --roofs: cells asked for, comma separated.
     #[arg(long, value_delimiter = ',', default_values_t = [1500], requires = "roofs")]
@@ -73,7 +76,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    if args.variants {
+    if args.variants && args.roofs.is_none() {
         return crate::bench_variants::run(args.json);
     }
     if args.init {
@@ -92,6 +95,7 @@ pub fn run(args: Args) -> Result<()> {
             cells: args.cells,
             generated: args.generated,
             walls,
+            variants: args.variants,
             json: args.json,
         });
     }

@@ -1,10 +1,13 @@
 //! `honeycomb bench --roofs [DIR]`: the whole pipeline on every design surface in a folder (and
 //! on the built-in ones with `--generated`), one row each: how long, how many iterations, how
-//! exact, and how the walls stand on S against parallel axes.
+//! exact, and how the walls stand on S against parallel axes. With `--variants`, one row per
+//! surface and variant instead: what the variant asks (quad planarity, edge parallelity) and
+//! what it cost (closeness to S, iterations).
 
 use honeycomb::generate::{design_surface, Shape};
 use honeycomb::mesh::{read_mesh, validate_base_mesh, PolyMesh};
-use honeycomb::{pipeline, Outcome, PipelineOptions, Progress, Surface, Walls};
+use honeycomb::structure::QuadPattern;
+use honeycomb::{pipeline, Outcome, PipelineOptions, Progress, Surface, Variant, Walls};
 use honeycomb::{Error, Result};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -28,7 +31,33 @@ pub struct RoofsArgs {
     pub cells: Vec<usize>,
     pub generated: bool,
     pub walls: Walls,
+    /// One row per variant (see [`VARIANTS`]) instead of the plain pipeline.
+    pub variants: bool,
     pub json: bool,
+}
+
+/// The variants `--variants` runs on every surface, by the name its rows give.
+const VARIANTS: [&str; 3] = ["zigzag", "alternating", "parallel"];
+
+fn variant(name: &str) -> Variant {
+    match name {
+        "parallel" => Variant::Parallel {
+            depth: None,
+            w_parallel: None,
+            w_depth: None,
+        },
+        pattern => Variant::Quads {
+            pattern: if pattern == "zigzag" {
+                QuadPattern::Zigzag
+            } else {
+                QuadPattern::Alternating
+            },
+            quad_direction: None,
+            w_cons_faces: None,
+            w_fair_zig: None,
+            w_fair_str: None,
+        },
+    }
 }
 
 /// One row of the table.
@@ -40,8 +69,29 @@ struct Row {
     status: &'static str,
     #[serde(skip_serializing_if = "Option::is_none")]
     reason: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    variant: Option<&'static str>,
     #[serde(flatten)]
     figures: Option<Figures>,
+    #[serde(flatten)]
+    variant_figures: Option<VariantFigures>,
+}
+
+/// What a variant asked and what it cost, from the realized meshes.
+#[derive(Serialize, Default)]
+struct VariantFigures {
+    /// Quads: the planarity of the capping quads on the honeycomb before capping, and after.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delta_face_max_before: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delta_face_avg_before: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delta_face_max: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    delta_face_avg: Option<f64>,
+    /// Parallel meshes: the largest angle between an edge of M and its edge of M'.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    beta_max_deg: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -90,6 +140,9 @@ pub fn run(args: RoofsArgs) -> Result<()> {
         Err(e) if args.dir.is_none() => eprintln!("skipping {}: {e}", dir.display()),
         Err(e) => return Err(e),
     }
+    if args.variants {
+        return run_variants(&args, &surfaces);
+    }
     if !args.json {
         println!(
             "{:<28} {:>6} {:>6} {:>7} {:>4} {:>9} {:>9} {:>6} {:>6} {:>6} {:>6} {:>6}  status",
@@ -114,10 +167,71 @@ pub fn run(args: RoofsArgs) -> Result<()> {
                 print!("{name:<28} {cells:>6} ");
                 let _ = std::io::Write::flush(&mut std::io::stdout());
             }
-            let row = bench_one(name, source, cells, args.walls);
+            let row = bench_one(name, source, cells, args.walls, None);
             print_row(&row, args.json)?;
         }
     }
+    Ok(())
+}
+
+/// `--variants`: the pipeline with each variant on every surface.
+fn run_variants(args: &RoofsArgs, surfaces: &[(String, Source)]) -> Result<()> {
+    if !args.json {
+        println!(
+            "{:<28} {:<11} {:>6} {:>6} {:>7} {:>4} {:>9} {:>9} {:>15} {:>15} {:>7} {:>6}  status",
+            "surface",
+            "variant",
+            "asked",
+            "cells",
+            "T (s)",
+            "#It",
+            "omega_max",
+            "delta_max",
+            "df max bef/aft",
+            "df avg bef/aft",
+            "beta",
+            "close"
+        );
+    }
+    for &cells in &args.cells {
+        for (name, source) in surfaces {
+            for variant in VARIANTS {
+                if !args.json {
+                    print!("{name:<28} {variant:<11} {cells:>6} ");
+                    let _ = std::io::Write::flush(&mut std::io::stdout());
+                }
+                let row = bench_one(name, source, cells, args.walls, Some(variant));
+                print_variant_row(&row, args.json)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn print_variant_row(row: &Row, json: bool) -> Result<()> {
+    let (Some(f), Some(v)) = (&row.figures, &row.variant_figures) else {
+        return print_row(row, json);
+    };
+    if json {
+        return print_row(row, json);
+    }
+    let pair = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) => format!("{a:.4}/{b:.4}"),
+        _ => "-".into(),
+    };
+    println!(
+        "{:>6} {:>7.2} {:>4} {:>9.1e} {:>9.1e} {:>15} {:>15} {:>7} {:>6.3}  {}",
+        f.cells,
+        f.seconds,
+        f.iterations_total,
+        f.omega_max_deg,
+        f.delta_max,
+        pair(v.delta_face_max_before, v.delta_face_max),
+        pair(v.delta_face_avg_before, v.delta_face_avg),
+        v.beta_max_deg.map_or("-".into(), |b| format!("{b:.1e}")),
+        f.closeness_max,
+        row.status
+    );
     Ok(())
 }
 
@@ -159,13 +273,21 @@ fn file_name(path: &Path) -> String {
 }
 
 /// The pipeline on one surface, timed from reading it to the measured result.
-fn bench_one(name: &str, source: &Source, cells: usize, walls: Walls) -> Row {
+fn bench_one(
+    name: &str,
+    source: &Source,
+    cells: usize,
+    walls: Walls,
+    variant_name: Option<&'static str>,
+) -> Row {
     let row = |status, reason: Option<String>, figures| Row {
         surface: name.to_string(),
         cells_asked: cells,
         status,
         reason,
+        variant: variant_name,
         figures,
+        variant_figures: None,
     };
     let start = Instant::now();
     let surface: PolyMesh = match source {
@@ -182,6 +304,9 @@ fn bench_one(name: &str, source: &Source, cells: usize, walls: Walls) -> Row {
     }
     let mut options = PipelineOptions::new(cells);
     options.options.walls = walls;
+    if let Some(name) = variant_name {
+        options.options.variant = variant(name);
+    }
     let made = match Surface::new(surface)
         .and_then(|surface| pipeline(&surface, &options, &mut Progress::silent()))
     {
@@ -194,7 +319,25 @@ fn bench_one(name: &str, source: &Source, cells: usize, walls: Walls) -> Row {
     } else {
         "not a honeycomb"
     };
-    row(status, None, Some(figures(&made, seconds)))
+    let mut row = row(status, None, Some(figures(&made, seconds)));
+    if variant_name.is_some() {
+        row.variant_figures = Some(variant_figures(&made));
+    }
+    row
+}
+
+fn variant_figures(made: &Outcome) -> VariantFigures {
+    let mut v = VariantFigures {
+        beta_max_deg: made.report.parallel.as_ref().map(|p| p.beta_max_deg),
+        ..VariantFigures::default()
+    };
+    if let Some(q) = &made.report.quads {
+        v.delta_face_max = Some(q.faces.delta_face_max);
+        v.delta_face_avg = Some(q.faces.delta_face_avg);
+        v.delta_face_max_before = q.capping.as_ref().map(|c| c.delta_face_max_before);
+        v.delta_face_avg_before = q.capping.as_ref().map(|c| c.delta_face_avg_before);
+    }
+    v
 }
 
 fn figures(made: &Outcome, seconds: f64) -> Figures {

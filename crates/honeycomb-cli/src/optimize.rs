@@ -29,7 +29,7 @@ pub struct SolveArgs {
     /// Reference surface S (triangle/quad/polygon mesh); default: the base mesh itself.
     #[arg(long)]
     pub surface: Option<PathBuf>,
-    /// Maximum number of guided-projection iterations [default: 10, 20 with --light].
+    /// Maximum number of guided-projection iterations (with --quads: of the honeycomb, then of the capping) [default: 10, 20 with --light or --quads].
     #[arg(long, allow_negative_numbers = true)]
     pub iterations: Option<usize>,
     /// Distance between M and M' along the node axes, in model units (default 0.3 mean edge lengths).
@@ -58,8 +58,8 @@ pub struct SolveArgs {
     /// Solve for one point per cell (the default for a plain honeycomb): each wall normal is
     /// the difference of its two cells' points, so the 120-degree condition holds at inner
     /// nodes by construction; a third less fill than one normal per edge and more accuracy per
-    /// iteration. Given explicitly, a variant (--parallel, --quads, --axes, --light) is an
-    /// error instead of a switch to normals per edge.
+    /// iteration. Given explicitly, a variant (--parallel, --axes, --light) is an error
+    /// instead of a switch to normals per edge (--quads caps a plain honeycomb).
     #[arg(long)]
     pub cell_points: bool,
     /// Solve for one unit normal per edge (the paper's formulation; what the variants use).
@@ -100,14 +100,16 @@ pub struct SolveArgs {
     pub sun_path: Option<PathBuf>,
     /// Cap every hexagon with two planar quads (Figs. 1, 11, 17), written to quads.obj:
     /// `zigzag` splits all cells along one lattice direction, `alternating` splits neighbouring
-    /// strips along the other two by turns.
+    /// strips along the other two by turns. The honeycomb (walls as --walls says) is made
+    /// first; then its walls are kept and its vertices move, off the surface where the quads
+    /// need it (report.json's `capping` says how far).
     #[arg(long, value_name = "zigzag|alternating")]
     pub quads: Option<QuadPattern>,
     /// With --quads: the straight polylines follow the lattice direction closest to DX,DY,DZ
     /// [default: the direction whose quads start closest to planar].
     #[arg(long, value_parser = parse_direction, allow_hyphen_values = true)]
     pub quad_direction: Option<Vec3>,
-    /// Weight of quad planarity (the paper's w_cons^faces; with --quads) [default: 0.1].
+    /// Weight of quad planarity (the paper's w_cons^faces; with --quads), against closeness to the surface at 0.3 [default: 1].
     #[arg(long, allow_negative_numbers = true)]
     pub w_cons_faces: Option<f64>,
     /// Weight of zigzag-polyline fairness (the paper's w_fair^zig; with --quads) [default:
@@ -126,7 +128,7 @@ pub struct SolveArgs {
     /// honeycomb allows, cells of one size), `uniform` (every axis along its mean normal), a
     /// direction DX,DY,DZ for every axis (vertical walls on a roof: 0,0,1) or `free` (wherever
     /// the guided projection leaves them, the paper's algorithm) [default: across; not with
-    /// --parallel, --quads, --axes or --light].
+    /// --parallel, --axes or --light].
     #[arg(
         long,
         value_name = "across|uniform|DX,DY,DZ|free",
@@ -149,9 +151,10 @@ impl SolveArgs {
         Output::from_flags(self.quiet, self.json)
     }
 
-    /// The variants solve their own way (the guided projection from the base mesh as given).
+    /// The variants that solve their own way (the guided projection from the base mesh as
+    /// given); quads cap the plain honeycomb instead.
     pub fn is_variant(&self) -> bool {
-        self.parallel || self.quads.is_some() || self.axes.is_some() || self.light.is_some()
+        self.parallel || self.axes.is_some() || self.light.is_some()
     }
 
     /// `--walls`, checked: `across` unless given; refused with a variant.
@@ -161,8 +164,8 @@ impl SolveArgs {
         };
         if self.is_variant() {
             return Err(Error::Parameter(
-                "--walls shapes the plain honeycomb; --parallel, --quads, --axes and --light \
-                 solve from the base mesh as given"
+                "--walls shapes the plain honeycomb (and the one --quads caps); --parallel, \
+                 --axes and --light solve from the base mesh as given"
                     .into(),
             ));
         }
@@ -222,8 +225,8 @@ impl SolveArgs {
         }
         if self.cell_points && self.is_variant() {
             return Err(Error::Parameter(
-                "--cell-points: only for the plain honeycomb (not with --parallel, --quads, \
-                 --axes or --light)"
+                "--cell-points: only for the plain honeycomb and the one --quads caps (not \
+                 with --parallel, --axes or --light)"
                     .into(),
             ));
         }

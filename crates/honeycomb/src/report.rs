@@ -93,6 +93,18 @@ pub struct QuadCoverReport {
     pub quad_pattern: QuadPattern,
     #[serde(flatten)]
     pub faces: FaceMeasures,
+    /// What capping traded: planarity gained for distance to S.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub capping: Option<Capping>,
+}
+
+/// The capping solve (see `optimize::capped`): its iterations and the quads' planarity on the
+/// honeycomb before it (how far it took the vertices from S is `closeness_max`).
+#[derive(Clone, Debug, Serialize)]
+pub struct Capping {
+    pub iterations: usize,
+    pub delta_face_max_before: f64,
+    pub delta_face_avg_before: f64,
 }
 
 impl Report {
@@ -121,12 +133,11 @@ impl Report {
                 .quads
                 .as_ref()
                 .zip(opt.quad_cover.as_ref())
-                .map(|(mesh, cover)| {
-                    QuadCoverReport {
-                        quad_pattern: cover.pattern,
-                        // From the written quad mesh, whose split quads come first.
-                        faces: quad_mesh_measures(mesh, cover.quads.len()),
-                    }
+                .map(|(mesh, cover)| QuadCoverReport {
+                    quad_pattern: cover.pattern,
+                    // From the written quad mesh, whose split quads come first.
+                    faces: quad_mesh_measures(mesh, cover.quads.len()),
+                    capping: None,
                 }),
             shading: None,
             dropped_boundary_cells: None,
@@ -151,6 +162,34 @@ impl Report {
             residuals: s.families.clone(),
             history: s.history.clone(),
         }
+    }
+
+    /// This report (of the honeycomb `capped` was capped from, `before` its quads' planarity
+    /// then) turned into the capped one's, measured `m` from its meshes; the capping solve's
+    /// iterations (`capped.solve`'s) count in.
+    pub fn capped(&mut self, capped: &Optimized, m: &Measures, before: &FaceMeasures) {
+        let s = &capped.solve;
+        let (Some(mesh), Some(cover)) = (&capped.quads, &capped.quad_cover) else {
+            return;
+        };
+        self.iterations += s.iterations;
+        self.iterations_total += s.iterations;
+        self.converged = s.converged;
+        self.thickness = capped.honeycomb.thickness;
+        self.honeycomb = Self::within_tolerances(m);
+        self.measures = m.clone();
+        self.quads = Some(QuadCoverReport {
+            quad_pattern: cover.pattern,
+            // From the written quad mesh, whose split quads come first.
+            faces: quad_mesh_measures(mesh, cover.quads.len()),
+            capping: Some(Capping {
+                iterations: s.iterations,
+                delta_face_max_before: before.delta_face_max,
+                delta_face_avg_before: before.delta_face_avg,
+            }),
+        });
+        self.residuals = s.families.clone();
+        self.history = s.history.clone();
     }
 
     /// Largest node-angle deviation of a structure we call a honeycomb (degrees).

@@ -7,8 +7,8 @@ use crate::geometry::Vec3;
 use crate::mesh::Connectivity;
 use crate::mesh::PolyMesh;
 use crate::optimize::{
-    initial_normals, AxesOptions, Frame, OptimizeOptions, ParallelOptions, Problem, ProblemBuilder,
-    QuadOptions, QuadPattern, WallRows, Weights,
+    initial_normals, AxesOptions, CappingProblem, Frame, OptimizeOptions, ParallelOptions, Problem,
+    ProblemBuilder, QuadOptions, QuadPattern, WallRows, Weights,
 };
 use crate::solve::{jacobian_fd_error, Constraint};
 use crate::surface::Surface;
@@ -153,22 +153,23 @@ fn wall_plane_families_match_finite_differences() {
 
 /// The quad cover's families (both patterns): normals, planarity, polyline fairness.
 #[test]
-fn quad_families_match_finite_differences() {
+fn capping_families_match_finite_differences() {
     for pattern in [QuadPattern::Zigzag, QuadPattern::Alternating] {
-        let (frame, mesh, surface, conn) = saddle();
-        let options = OptimizeOptions {
-            quads: Some(QuadOptions {
-                pattern,
-                ..QuadOptions::default()
-            }),
-            ..OptimizeOptions::default()
+        let (_, mesh, surface, conn) = saddle();
+        let normals = initial_normals(&mesh, &conn, &surface);
+        let options = QuadOptions {
+            pattern,
+            ..QuadOptions::default()
         };
-        let mut problem =
-            Problem::build(&mesh, &conn, &surface, &options, &options.weights, &frame);
-        let cover = problem.quads.as_ref().unwrap();
+        let mut problem = CappingProblem::build(&mesh, &conn, &normals, &surface, &options, 0.3);
+        let cover = &problem.cover;
         assert_eq!(cover.quads.len(), 2 * mesh.faces.len());
-        // Every quad normal starts as a unit vector on S's side.
-        let start = problem.x.len() - 3 * cover.quads.len();
+        // The vertices, one unit normal per quad on S's side, one dummy per edge.
+        let start = 3 * mesh.vertices.len();
+        assert_eq!(
+            problem.x.len(),
+            start + 3 * cover.quads.len() + conn.num_edges()
+        );
         for (q, corners) in cover.quads.iter().enumerate() {
             let n = Vec3::from_slice(&problem.x[start + 3 * q..]);
             let c = corners
@@ -181,6 +182,10 @@ fn quad_families_match_finite_differences() {
             *xi += 0.05 * jitter(i);
         }
         let expected = [
+            "kept_walls",
+            "closeness",
+            "tangential_hold",
+            "min_edge_length",
             "quad_normalization",
             "quad_planarity",
             "fairness_zigzag",

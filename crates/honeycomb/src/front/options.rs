@@ -37,7 +37,7 @@ pub struct Options {
     pub walls: Walls,
     /// The paper's variants: parallel meshes, quads, prescribed axes, shading.
     pub variant: Variant,
-    /// Guided-projection iterations at most; `None`: 10, 20 for shading.
+    /// Guided-projection iterations at most; `None`: 10, 20 for shading and quads.
     pub iterations: Option<usize>,
     /// Initial regularization (in the frame where the mean edge is 1); it shrinks as steps
     /// succeed.
@@ -216,7 +216,7 @@ impl Options {
     /// The iterations asked for, or the default.
     pub fn max_iterations(&self) -> usize {
         self.iterations.unwrap_or(match self.variant {
-            Variant::Shading { .. } => 20,
+            Variant::Shading { .. } | Variant::Quads { .. } => 20,
             _ => 10,
         })
     }
@@ -326,7 +326,7 @@ impl Options {
         Ok(p)
     }
 
-    fn quads(&self) -> Result<Option<QuadOptions>> {
+    pub(crate) fn quads(&self) -> Result<Option<QuadOptions>> {
         let q = self.variant.quad_options();
         q.as_ref().map(QuadOptions::validate).transpose()?;
         Ok(q)

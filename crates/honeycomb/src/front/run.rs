@@ -5,11 +5,11 @@ use crate::analysis::{extruded_along_normals, shading_report};
 use crate::error::{Error, Result};
 use crate::init::{CellSize, InitOptions};
 use crate::mesh::check_base_near_surface;
-use crate::optimize::{optimize as solve, Optimized};
-use crate::pipeline::{pipeline as run_strategy, solve_base, Strategy};
+use crate::optimize::{capped, optimize as solve, OptimizeOptions, Optimized, QuadOptions};
+use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Strategy};
 use crate::reciprocal::AcrossOptions;
 use crate::report::Report;
-use crate::structure::measure;
+use crate::structure::{face_measures, measure};
 use crate::surface::Surface;
 use std::time::Instant;
 
@@ -53,6 +53,8 @@ impl PipelineOptions {
         }
         let mut optimize = self.options.optimize_options()?;
         optimize.solver.cancel = progress.cancel_handle();
+        // Quads cap the pipeline's honeycomb afterwards (see `cap_with_quads`).
+        optimize.quads = None;
         Ok(Strategy {
             init: self.init.clone(),
             init_chosen: self.init_chosen,
@@ -91,16 +93,9 @@ pub fn optimize(
     }
     let mut solver_options = options.optimize_options_for(base.mesh(), surface)?;
     solver_options.solver.cancel = progress.cancel_handle();
-    let (optimized, mut report) = if options.variant.is_plain() {
-        let solved = solve_base(
-            base.mesh(),
-            surface,
-            options.walls,
-            &solver_options,
-            &mut |step| progress.step(step),
-        )?;
-        (solved.optimized, solved.report)
-    } else {
+    // Quads cap the honeycomb the walls asked give (see `cap_with_quads`).
+    let quads = solver_options.quads.take();
+    let (optimized, report) = if solver_options.is_variant() {
         let optimized = solve(
             base.mesh(),
             surface.design_mesh(),
@@ -110,6 +105,19 @@ pub fn optimize(
         let measures = measure(&optimized.honeycomb, surface);
         let report = Report::new(&optimized, &measures, 0.0);
         (optimized, report)
+    } else {
+        let solved = solve_base(
+            base.mesh(),
+            surface,
+            options.walls,
+            &solver_options,
+            &mut |step| progress.step(step),
+        )?;
+        (solved.optimized, solved.report)
+    };
+    let (optimized, mut report) = match &quads {
+        Some(q) => cap_with_quads(optimized, report, surface, q, &solver_options, progress)?,
+        None => (optimized, report),
     };
     if let Variant::Shading {
         light, sun_path, ..
@@ -134,6 +142,49 @@ pub fn optimize(
 
 /// What a variant's solve is called in [`Step::Iteration`].
 const VARIANT_SOLVE: &str = "guided projection";
+/// What the capping solve is called in [`Step::Iteration`].
+const CAPPING_SOLVE: &str = "planar quads";
+
+/// The honeycomb `optimized` (reported in `report`) capped by planar quads on `surface`: its
+/// walls kept, its vertices moved (see `optimize::capped`), its report turned into the capped
+/// one's with the trade stated.
+fn cap_with_quads(
+    optimized: Optimized,
+    mut report: Report,
+    surface: &Surface,
+    quads: &QuadOptions,
+    options: &OptimizeOptions,
+    progress: &mut Progress,
+) -> Result<(Optimized, Report)> {
+    let uncapped = optimized.honeycomb.base.vertices.clone();
+    let mut capped = capped(
+        optimized,
+        surface.source_mesh(),
+        quads,
+        &options.solver,
+        &mut |info| progress.step(Step::Iteration(CAPPING_SOLVE, 1, info)),
+    )?;
+    let mut measures = measure(&capped.honeycomb, surface);
+    // Edges the capping shortened where axes lean together may cross their walls.
+    let thinner = uncross(
+        &mut capped.honeycomb,
+        &capped.connectivity,
+        &mut measures,
+        surface,
+        options.thickness,
+    );
+    let cover = (capped.quad_cover.as_ref()).expect("a capped honeycomb has its cover");
+    report.capped(&capped, &measures, &face_measures(&uncapped, &cover.quads));
+    report.notes.extend(thinner);
+    if capped.honeycomb.base.vertices == uncapped {
+        report.notes.push(
+            "the capping crossed a wall at every closeness to S it tried; the quads cap the \
+             honeycomb as it was"
+                .into(),
+        );
+    }
+    Ok((capped, report))
+}
 
 /// Makes a honeycomb on the design surface `surface` from nothing else: a hexagonal base
 /// mesh of about `init`'s cells, walls as asked, and the retries that it takes.
@@ -158,7 +209,14 @@ pub fn pipeline(
     // Before any work: a cell count that no solve takes is refused at once.
     crate::limits::check_solve_cells(&options.init, surface.source_mesh())?;
     let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
-    let mut out = outcome(made.optimized, made.report, made.base, None);
+    let (mut optimized, mut report) = (made.optimized, made.report);
+    if let Some(q) = &options.options.quads()? {
+        let start = Instant::now() - std::time::Duration::from_secs_f64(report.seconds);
+        (optimized, report) =
+            cap_with_quads(optimized, report, surface, q, &strategy.optimize, progress)?;
+        report.seconds = start.elapsed().as_secs_f64();
+    }
+    let mut out = outcome(optimized, report, made.base, None);
     out.initialized = Some(made.initialized.report);
     Ok(out)
 }

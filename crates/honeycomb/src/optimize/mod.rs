@@ -19,6 +19,8 @@ pub use made_mesh::{optimize_made_mesh, Attempt};
 pub use problem::{block_positions, initial_normals, node_walls, ProblemBuilder, WallRows};
 #[cfg(test)]
 pub use problem::{boundary_vertices_on_surface_boundary, families};
+#[cfg(test)]
+pub(crate) use quads::CappingProblem;
 pub use quads::QuadOptions;
 #[cfg(test)]
 pub use quads::QuadPattern;
@@ -66,15 +68,16 @@ pub struct OptimizeOptions {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum WallNormals {
-    /// Cell points for a plain honeycomb, normals per edge with a variant (parallel meshes,
-    /// quads, prescribed axes), which constrain the normals one by one.
+    /// Cell points for a plain honeycomb (also the one quads cap), normals per edge with
+    /// parallel meshes or prescribed axes, which constrain the normals one by one.
     #[default]
     Auto,
     /// One unit normal per edge (the paper's formulation, DESIGN.md section 2).
     PerEdge,
     /// One point per cell, each wall normal the difference of its two cells' points (see
     /// `dual_normals.rs`): the 120-degree condition holds at inner nodes by construction, the
-    /// factor is about a third smaller and each iteration gains more. Plain honeycombs only.
+    /// factor is about a third smaller and each iteration gains more. Not with parallel meshes
+    /// or prescribed axes.
     CellPoints,
 }
 
@@ -152,10 +155,16 @@ impl OptimizeOptions {
         self.parallel.is_some() || self.axes.is_some() || self.quads.is_some()
     }
 
+    /// Parallel meshes or prescribed axes, whose rows read the wall normals one by one (quads
+    /// cap a finished honeycomb and keep its walls).
+    pub fn constrains_normals(&self) -> bool {
+        self.parallel.is_some() || self.axes.is_some()
+    }
+
     /// These options with `Auto` wall normals decided and the normalization weight set.
     pub fn resolved(&self) -> OptimizeOptions {
         let wall_normals = match self.wall_normals {
-            WallNormals::Auto if self.is_variant() => WallNormals::PerEdge,
+            WallNormals::Auto if self.constrains_normals() => WallNormals::PerEdge,
             WallNormals::Auto => WallNormals::CellPoints,
             chosen => chosen,
         };
@@ -206,11 +215,9 @@ impl OptimizeOptions {
         if let Some(q) = &self.quads {
             q.validate()?;
         }
-        if self.wall_normals == WallNormals::CellPoints && self.is_variant() {
+        if self.wall_normals == WallNormals::CellPoints && self.constrains_normals() {
             return Err(Error::Parameter(
-                "wall normals as cell points: only for the plain honeycomb (no parallel \
-                 meshes, quads or prescribed axes)"
-                    .into(),
+                "wall normals as cell points: not with parallel meshes or prescribed axes".into(),
             ));
         }
         Ok(())
@@ -250,8 +257,6 @@ pub struct Problem<'a> {
     pub families: Vec<Box<dyn Constraint + 'a>>,
     /// Where M' lives, with parallel meshes.
     pub offset: Option<OffsetBlock>,
-    /// How the cells are split, with quads.
-    pub quads: Option<crate::structure::QuadCover>,
 }
 
 impl<'a> Problem<'a> {
@@ -385,10 +390,6 @@ impl<'a> Problem<'a> {
                 role: Role::Condition,
             });
         }
-        let quad_cover = options.quads.as_ref().map(|q| {
-            let w_norm = weights.normalization();
-            quads::add_quads(mesh, conn, surface, q, w_norm, &mut problem)
-        });
         let (unknowns, families) = problem.finish();
         let (x, _blocks) = unknowns.into_parts();
         Problem {
@@ -398,7 +399,6 @@ impl<'a> Problem<'a> {
             blocks: _blocks,
             families,
             offset,
-            quads: quad_cover,
         }
     }
 }
@@ -413,6 +413,23 @@ pub fn optimize(
 ) -> Result<Optimized> {
     let conn = validate_base_mesh(base)?;
     options.validate(base)?;
+    if let Some(q) = &options.quads {
+        let honeycomb = OptimizeOptions {
+            quads: None,
+            ..options.clone()
+        };
+        let solved = optimize(base, surface, &honeycomb, progress)?;
+        let iterations = solved.solve.iterations;
+        let mut capped = capped(
+            solved,
+            surface.unwrap_or(base),
+            q,
+            &options.solver,
+            progress,
+        )?;
+        capped.solve.iterations += iterations;
+        return Ok(capped);
+    }
     let options = &options.resolved();
     let mut weights = options.weights;
     if surface.is_none() {
@@ -431,7 +448,6 @@ pub fn optimize(
 
     let problem = Problem::build(&mesh, &conn, &normalized_surface, options, &weights, &frame);
     let (layout, offset, mut x) = (problem.layout, problem.offset, problem.x);
-    let quad_cover = problem.quads;
     let solve = if options.wall_normals == WallNormals::CellPoints {
         let d = dual_normals::dual_normals(&mesh, &conn, layout, &x)?;
         let mut y = d.y;
@@ -460,7 +476,6 @@ pub fn optimize(
         .map(|e| layout.normal_at(&x, e).normalized())
         .collect();
     let optimized = PolyMesh::new(vertices, base.faces.clone());
-    let quads = quad_cover.as_ref().map(|c| c.mesh(&optimized.vertices));
     let honeycomb = match offset {
         // Parallel meshes: M' is the solved second mesh itself.
         Some(block) => {
@@ -485,9 +500,42 @@ pub fn optimize(
         frame,
         prescribed_axes: options.axes.as_ref().map(AxesOptions::unit_targets),
         parallel: options.parallel.is_some(),
-        quads,
-        quad_cover,
+        quads: None,
+        quad_cover: None,
         weights,
         wall_normals: options.wall_normals,
+    })
+}
+
+/// `solved` (a plain honeycomb) capped by planar quads on the design surface `surface` (see
+/// [`quads::cap`]): its walls and node axes kept, its vertices moved; `solve` is the capping
+/// solve's.
+pub fn capped(
+    solved: Optimized,
+    surface: &PolyMesh,
+    options: &QuadOptions,
+    solver: &SolverOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Optimized> {
+    let h = &solved.honeycomb;
+    let conn = &solved.connectivity;
+    // The walls as realized: each through its edge and the axes at its ends.
+    let normals: Vec<Vec3> = (conn.edges.iter())
+        .map(|&[a, b]| {
+            let edge = h.base.vertices[b] - h.base.vertices[a];
+            edge.cross(h.axes[a] + h.axes[b]).normalized()
+        })
+        .collect();
+    let capped = quads::cap(h, conn, &normals, surface, options, solver, progress)?;
+    let mesh = PolyMesh::new(capped.vertices, h.base.faces.clone());
+    let axes = node_axes(conn, &normals, |v| h.axes[v]);
+    let honeycomb = Honeycomb::new(mesh, conn, axes, h.thickness);
+    Ok(Optimized {
+        quads: Some(capped.cover.mesh(&honeycomb.base.vertices)),
+        quad_cover: Some(capped.cover),
+        honeycomb,
+        solve: capped.solve,
+        normals,
+        ..solved
     })
 }

@@ -330,7 +330,6 @@ mod tests {
                 targets: vec![Vec3::new(0.0, 0.0, 1.0); mesh.vertices.len()],
                 weight: 0.1,
             }),
-            quads: Some(QuadOptions::default()),
             ..OptimizeOptions::default()
         }
         .resolved();
@@ -343,13 +342,11 @@ mod tests {
             "min_edge_dummies",
             "orientation_dummies",
             "offset_vertices",
-            "quad_normals",
         ];
         assert_eq!(names, expected);
         let (nv, ne) = (mesh.vertices.len(), conn.num_edges());
-        let quads = problem.quads.as_ref().unwrap().quads.len();
         // One orientation row per wall end at a node: two per edge.
-        let lengths = [3 * nv, 3 * ne, ne, 2 * ne, 3 * nv, 3 * quads];
+        let lengths = [3 * nv, 3 * ne, ne, 2 * ne, 3 * nv];
         assert_eq!(blocks.iter().map(|b| b.len).collect::<Vec<_>>(), lengths);
         let layout = problem.layout;
         assert_eq!(layout.vertex(nv - 1) + 3, blocks[0].end());
@@ -359,7 +356,6 @@ mod tests {
         assert_eq!(offset.start, block(blocks, "offset_vertices").start);
         assert!(reads(&problem, "min_edge_length", 6, blocks[2]));
         assert!(reads(&problem, "node_orientation_valence2", 9, blocks[3]));
-        assert!(reads(&problem, "quad_normalization", 0, blocks[5]));
         let names: Vec<&str> = problem.families.iter().map(|f| f.name()).collect();
         assert!(names.contains(&"wall_consistency") && !names.contains(&"wall_plane"));
     }

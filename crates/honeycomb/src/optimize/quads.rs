@@ -1,19 +1,20 @@
 //! Quadrangulation (paper section 4, Figs. 1, 11, 17) as an option of `optimize`: every
-//! hexagon of M is split into two quads that must be planar, with soft fairness of the zigzag
-//! and straight polylines. Adds one unit normal per quad after the unknowns already there.
+//! hexagon of a finished honeycomb is split into two quads that must be planar, with soft
+//! fairness of the zigzag and straight polylines (see [`cap`]).
 
 pub use crate::structure::QuadPattern;
 
-use super::problem::ProblemBuilder;
 use super::variants::check_weight;
+use super::Frame;
 use crate::constraints::{
-    LateralRun, QuadNormalBlock, QuadNormalization, QuadPlanarity, StraightFairness, ZigzagFairness,
+    Closeness, FixedNormalRow, FixedNormals, Layout, MinEdgeLength, QuadNormalBlock,
+    QuadNormalization, QuadPlanarity, TangentialHold, ZigzagFairness,
 };
 use crate::error::{Error, Result};
 use crate::geometry::{smallest_eigenvector, sum_of_outer_products, Vec3};
 use crate::mesh::{Connectivity, PolyMesh};
-use crate::solve::Role;
-use crate::structure::QuadCover;
+use crate::solve::{Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolverOptions};
+use crate::structure::{is_convex, Honeycomb, QuadCover};
 use crate::surface::Surface;
 
 #[derive(Clone, Debug)]
@@ -22,7 +23,8 @@ pub struct QuadOptions {
     /// The straight polylines run along the lattice direction closest to this (model
     /// coordinates); `None`: the direction whose quads start closest to planar.
     pub direction: Option<Vec3>,
-    /// Weight of the quad planarity rows (the paper's w_cons^faces, 0.1).
+    /// Weight of the quad planarity rows (the paper's w_cons^faces; 1, against closeness to S
+    /// at 0.3).
     pub w_cons_faces: f64,
     /// Weight of zigzag fairness (the paper's w_fair^zig, 0.01).
     pub w_fair_zigzag: f64,
@@ -35,7 +37,7 @@ impl Default for QuadOptions {
         QuadOptions {
             pattern: QuadPattern::Zigzag,
             direction: None,
-            w_cons_faces: 0.1,
+            w_cons_faces: 1.0,
             w_fair_zigzag: 0.01,
             w_fair_straight: 0.01,
         }
@@ -60,74 +62,212 @@ impl QuadOptions {
 }
 
 /// The polyline fairness keeps its small weight to the end instead of fading with the
-/// regularization: it is what holds the vertices in place along the surface, which the quad
-/// planarity pulls at and nothing else resists. Faded, a twisted roof (tests/quads.rs) came
-/// out with zigzags irregular by 1.6 edge lengths and an iteration that swung back and forth.
+/// regularization: with the hold along S it is what keeps the polylines as the honeycomb drew
+/// them, which the quad planarity pulls at.
 const FAIRNESS_ROLE: Role = Role::Condition;
 
 /// Which sides of a quad get a planarity row: all four (see `QuadPlanarity::sides`).
 const SIDES: [usize; 4] = [0, 1, 2, 3];
 
-/// Splits the cells of `mesh` (normalized frame), allocates one unit normal per quad and
-/// pushes the planarity and fairness families. The quad normals start as each quad's best-fit
-/// plane normal, turned to the side of S's normal.
-pub(crate) fn add_quads(
-    mesh: &PolyMesh,
+/// The kept walls hold to roundoff: everything else gives way to them.
+const KEPT_WALLS_WEIGHT: f64 = 1000.0;
+/// Closeness to S, soft: the freedom to planarize lies mostly across S (each vertex slides
+/// along its node axis), and this is what it costs. Tried in turn until no vertex is farther
+/// than `MAX_DISTANCE_FROM_S` from S and no wall crosses itself (the last is kept if no wall
+/// crosses, else the honeycomb stays as it was).
+const CLOSENESS_WEIGHTS: [f64; 4] = [0.1, 0.3, 1.0, 3.0];
+/// How far capping may take a vertex from S, in mean edge lengths.
+const MAX_DISTANCE_FROM_S: f64 = 0.1;
+/// The hold of each vertex along S (see `TangentialHold`).
+const HOLD_WEIGHT: f64 = 0.3;
+
+/// Every edge stays at least this long (mean edge lengths): a quad with a vanishing side is
+/// a triangle, so planarity pulls at short edges, and where the axes at an edge's ends lean
+/// together a short edge crosses its wall.
+const MIN_EDGE: f64 = 0.5;
+
+/// A honeycomb capped by planar quads, in model units.
+pub struct Capped {
+    /// M's vertices after capping; faces, walls and node axes are the honeycomb's.
+    pub vertices: Vec<Vec3>,
+    pub cover: QuadCover,
+    pub solve: SolveReport,
+}
+
+/// Caps every hexagon of `honeycomb` (model units, with its unit wall normals `normals`, one
+/// per edge of `conn`) by two quads and moves the vertices until the quads are
+/// as planar as the walls allow within `MAX_DISTANCE_FROM_S` of S.
+///
+/// The walls are kept: every wall normal stays as it is, so each node keeps its angles and
+/// its axis, and each edge stays in its wall plane (a linear row). What moves is where the
+/// vertices sit on their walls: along the node axes (off S, softly held) and, held harder,
+/// along S. A honeycomb on S keeps about one degree of freedom per cell; its two quads ask
+/// for two, which the slides along the axes give. With the wall normals as unknowns too the
+/// planarity pulls the node conditions with it and the solve ends off 120 degrees.
+pub(crate) fn cap(
+    honeycomb: &Honeycomb,
     conn: &Connectivity,
-    surface: &Surface,
+    normals: &[Vec3],
+    surface: &PolyMesh,
     options: &QuadOptions,
-    normalization_weight: f64,
-    problem: &mut ProblemBuilder<'_, '_>,
-) -> QuadCover {
-    let cover = QuadCover::new(mesh, conn, options.pattern, options.direction);
-    let normals = (0..cover.quads.len())
-        .flat_map(|q| best_fit_normal(cover.corners(&mesh.vertices, q), surface).to_array());
-    let block = QuadNormalBlock {
-        start: problem.allocate("quad_normals", normals).start,
-    };
-    if cover.quads.is_empty() {
-        return cover;
-    }
-    let layout = problem.layout();
-    problem.push(QuadNormalization {
-        block,
-        num_quads: cover.quads.len(),
-        weight: normalization_weight,
-    });
-    problem.push(QuadPlanarity {
-        layout,
-        block,
-        quads: cover.quads.clone(),
-        sides: SIDES.to_vec(),
-        weight: options.w_cons_faces,
-    });
-    if options.w_fair_zigzag > 0.0 && !cover.zigzag_runs.is_empty() {
-        problem.push(ZigzagFairness {
-            layout,
-            runs: cover.zigzag_runs.clone(),
-            weight: options.w_fair_zigzag,
-            role: FAIRNESS_ROLE,
-        });
-    }
-    if options.w_fair_straight > 0.0 && !cover.straight_runs.is_empty() {
-        let runs = cover
-            .straight_runs
-            .iter()
-            .map(|r| LateralRun {
-                edge: r.edge,
-                sign: conn.edge_sign(r.edge, r.i),
-                j: r.j,
-                k: r.k,
-            })
+    solver: &SolverOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Capped> {
+    let frame = Frame::of(&honeycomb.base);
+    let normalized = frame.to_normalized(&honeycomb.base);
+    let surface = Surface::from_mesh(&frame.to_normalized(surface))?;
+    let (axes, depth) = (&honeycomb.axes, honeycomb.thickness / frame.unit);
+    let layout = Layout::new(normalized.vertices.len(), 0);
+    let mut iterations = 0;
+    let mut tries = CLOSENESS_WEIGHTS.iter().peekable();
+    while let Some(&closeness) = tries.next() {
+        let problem =
+            CappingProblem::build(&normalized, conn, normals, &surface, options, closeness);
+        let (mut x, cover) = (problem.x, problem.cover);
+        let mut projection =
+            GuidedProjection::with_positions(x.len(), problem.families, Some(&problem.positions))?;
+        let mut solve = projection.solve(&mut x, solver, progress)?;
+        iterations += solve.iterations;
+        let vertices: Vec<Vec3> = (0..layout.num_vertices)
+            .map(|v| layout.vertex_at(&x, v))
             .collect();
-        problem.push(StraightFairness {
-            layout,
-            runs,
-            weight: options.w_fair_straight,
-            role: FAIRNESS_ROLE,
-        });
+        // The normalized frame's unit is the mean edge length.
+        let farthest = (vertices.iter())
+            .map(|&p| surface.closest_point(p).distance)
+            .fold(0.0, f64::max);
+        // No wall convex before may cross itself after, at the honeycomb's depth: an edge
+        // the capping shortened or turned towards the axes at its ends would.
+        let wall = |p: &[Vec3], [a, b]: [usize; 2]| {
+            [p[a], p[b], p[b] + axes[b] * depth, p[a] + axes[a] * depth]
+        };
+        let kept = (conn.edges.iter())
+            .all(|&e| is_convex(wall(&vertices, e)) || !is_convex(wall(&normalized.vertices, e)));
+        let last = tries.peek().is_none();
+        if last || (farthest <= MAX_DISTANCE_FROM_S && kept) {
+            solve.iterations = iterations;
+            // A last try that crossed a wall leaves the honeycomb as it was.
+            let vertices = if kept { vertices } else { normalized.vertices };
+            return Ok(Capped {
+                vertices: vertices.into_iter().map(|p| frame.to_model(p)).collect(),
+                cover,
+                solve,
+            });
+        }
     }
-    cover
+    unreachable!("the last try returns")
+}
+
+/// The capping solve's unknowns (the vertices, one unit normal per quad, one minimum-length
+/// dummy per edge) and families, in the normalized frame.
+pub(crate) struct CappingProblem<'a> {
+    pub x: Vec<f64>,
+    pub families: Vec<Box<dyn Constraint + 'a>>,
+    pub cover: QuadCover,
+    /// Where each block of three unknowns sits (for the solver's ordering).
+    pub positions: Vec<Option<Vec3>>,
+}
+
+impl<'a> CappingProblem<'a> {
+    pub fn build(
+        normalized: &PolyMesh,
+        conn: &Connectivity,
+        normals: &[Vec3],
+        surface: &'a Surface,
+        options: &QuadOptions,
+        closeness: f64,
+    ) -> CappingProblem<'a> {
+        let cover = QuadCover::new(normalized, conn, options.pattern, options.direction);
+        let layout = Layout::new(normalized.vertices.len(), 0);
+        let mut x: Vec<f64> = normalized
+            .vertices
+            .iter()
+            .flat_map(|p| p.to_array())
+            .collect();
+        let block = QuadNormalBlock { start: x.len() };
+        for q in 0..cover.quads.len() {
+            x.extend(best_fit_normal(cover.corners(&normalized.vertices, q), &surface).to_array());
+        }
+        let dummies = MinEdgeLength::initial_dummies(&conn.edges, MIN_EDGE, &normalized.vertices);
+        let dummy_start = x.len();
+        x.extend(dummies);
+        let walls = (conn.edges.iter().zip(normals))
+            .map(|(&[a, b], &normal)| FixedNormalRow { normal, a, b })
+            .collect();
+        let mut families: Vec<Box<dyn Constraint + 'a>> = vec![
+            Box::new(FixedNormals {
+                name: "kept_walls",
+                layout,
+                rows: walls,
+                weight: KEPT_WALLS_WEIGHT,
+                role: Role::Condition,
+            }),
+            Box::new(Closeness::new(layout, surface, closeness)),
+            Box::new(TangentialHold::new(
+                layout,
+                &normalized.vertices,
+                |p| surface.normal_at(p),
+                HOLD_WEIGHT,
+            )),
+            Box::new(MinEdgeLength::new(
+                layout,
+                conn.edges.clone(),
+                MIN_EDGE,
+                dummy_start,
+                1.0,
+            )),
+            Box::new(QuadNormalization {
+                block,
+                num_quads: cover.quads.len(),
+                weight: 1.0,
+            }),
+            Box::new(QuadPlanarity {
+                layout,
+                block,
+                quads: cover.quads.clone(),
+                sides: SIDES.to_vec(),
+                weight: options.w_cons_faces,
+            }),
+        ];
+        if options.w_fair_zigzag > 0.0 && !cover.zigzag_runs.is_empty() {
+            families.push(Box::new(ZigzagFairness {
+                layout,
+                runs: cover.zigzag_runs.clone(),
+                weight: options.w_fair_zigzag,
+                role: FAIRNESS_ROLE,
+            }));
+        }
+        if options.w_fair_straight > 0.0 && !cover.straight_runs.is_empty() {
+            // The sideways direction of a straight run is its wall's normal, which is kept.
+            let rows = (cover.straight_runs.iter())
+                .map(|r| FixedNormalRow {
+                    normal: normals[r.edge] * conn.edge_sign(r.edge, r.i),
+                    a: r.j,
+                    b: r.k,
+                })
+                .collect();
+            families.push(Box::new(FixedNormals {
+                name: "fairness_straight",
+                layout,
+                rows,
+                weight: options.w_fair_straight,
+                role: FAIRNESS_ROLE,
+            }));
+        }
+        let mut positions: Vec<Option<Vec3>> = (normalized.vertices.iter().map(|&p| Some(p)))
+            .chain((0..cover.quads.len()).map(|q| {
+                let c = cover.corners(&normalized.vertices, q);
+                Some((c[0] + c[1] + c[2] + c[3]) / 4.0)
+            }))
+            .collect();
+        // The dummies are unplaced.
+        positions.resize(x.len().div_ceil(3), None);
+        CappingProblem {
+            x,
+            families,
+            cover,
+            positions,
+        }
+    }
 }
 
 /// The normal of the plane through the quad's centroid that is closest to its corners (least

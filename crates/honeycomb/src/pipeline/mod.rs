@@ -659,7 +659,7 @@ const MIN_THICKNESS: f64 = 0.1;
 /// running against M's, where two neighbouring axes lean together) made thinner, down to
 /// [`MIN_THICKNESS`] mean edge lengths, so that none does; a note says so. A thickness the
 /// user asked for is kept.
-fn uncross(
+pub(crate) fn uncross(
     h: &mut crate::structure::Honeycomb,
     conn: &crate::mesh::Connectivity,
     measures: &mut Measures,

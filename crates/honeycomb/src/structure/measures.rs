@@ -150,7 +150,7 @@ pub fn thickest_uncrossed(h: &Honeycomb) -> f64 {
 }
 
 /// Whether a (nearly planar) quad is convex: it turns the same way at all four corners.
-fn is_convex(p: [Vec3; 4]) -> bool {
+pub(crate) fn is_convex(p: [Vec3; 4]) -> bool {
     let corner = |k: usize| (p[(k + 1) % 4] - p[k]).cross(p[(k + 3) % 4] - p[k]);
     let first = corner(0);
     (1..4).all(|k| corner(k).dot(first) > 0.0)

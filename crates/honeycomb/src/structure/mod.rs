@@ -9,11 +9,12 @@ mod variant_measures;
 
 pub(crate) use axes::node_axes;
 pub use honeycomb::{Honeycomb, StructureJson};
-pub(crate) use measures::{line_angle_deg, per_wall_worse_end, quad_planarity, thickest_uncrossed};
+pub(crate) use measures::{
+    is_convex, line_angle_deg, per_wall_worse_end, quad_planarity, thickest_uncrossed,
+};
 pub use measures::{measure, Measures, Spread};
 pub(crate) use quad_cover::QuadCover;
 pub use quad_cover::QuadPattern;
-#[cfg(test)]
 pub(crate) use quad_measures::face_measures;
 pub(crate) use quad_measures::quad_mesh_measures;
 pub use quad_measures::FaceMeasures;

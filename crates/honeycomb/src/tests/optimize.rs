@@ -308,25 +308,32 @@ fn cell_points_reach_a_honeycomb_around_a_hole() {
     assert!(m.delta_max < 1e-6, "delta {}", m.delta_max);
 }
 
-/// Asked for explicitly, cell points refuse a variant; left to `Auto`, a variant gets normals
-/// per edge.
+/// Asked for explicitly, cell points refuse parallel meshes; left to `Auto`, parallel meshes
+/// get normals per edge, and the honeycomb that quads cap gets cell points.
 #[test]
-fn cell_points_refuse_variants() {
+fn cell_points_refuse_variants_that_read_the_normals() {
     let (base, surface) = lifted_hex_patch(Shape::Dome, 300);
     let options = OptimizeOptions {
-        quads: Some(Default::default()),
+        parallel: Some(Default::default()),
         ..OptimizeOptions::cell_points()
     };
     let err = optimize(&base, Some(&surface), &options, &mut |_| {})
         .err()
         .expect("refused");
-    assert!(err.to_string().contains("plain honeycomb"), "{err}");
+    assert!(err.to_string().contains("parallel meshes"), "{err}");
     let auto = OptimizeOptions {
-        quads: Some(Default::default()),
+        parallel: Some(Default::default()),
         ..OptimizeOptions::default()
     };
     let opt = optimize(&base, Some(&surface), &auto, &mut |_| {}).unwrap();
     assert_eq!(opt.wall_normals, WallNormals::PerEdge);
+    let quads = OptimizeOptions {
+        quads: Some(Default::default()),
+        ..OptimizeOptions::default()
+    };
+    let opt = optimize(&base, Some(&surface), &quads, &mut |_| {}).unwrap();
+    assert_eq!(opt.wall_normals, WallNormals::CellPoints);
+    assert!(opt.quads.is_some());
 }
 
 /// Large systems are factored in two halves on two threads where the process may use two, and
