@@ -285,7 +285,7 @@ mod tests {
     use super::*;
     use crate::constraints::jacobian_tests::saddle;
 
-    use crate::optimize::{AxesOptions, OptimizeOptions, ParallelOptions, Problem, QuadOptions};
+    use crate::optimize::{AxesOptions, OptimizeOptions, ParallelOptions, Problem};
 
     /// The blocks' names, after checking that they tile `0..len` in order.
     fn tiling(blocks: &[Block], len: usize) -> Vec<&'static str> {

@@ -75,7 +75,7 @@ const KEPT_WALLS_WEIGHT: f64 = 1000.0;
 /// along its node axis), and this is what it costs. Tried in turn until no vertex is farther
 /// than `MAX_DISTANCE_FROM_S` from S and no wall crosses itself (the last is kept if no wall
 /// crosses, else the honeycomb stays as it was).
-const CLOSENESS_WEIGHTS: [f64; 4] = [0.1, 0.3, 1.0, 3.0];
+const CLOSENESS_WEIGHTS: [f64; 3] = [0.3, 1.0, 3.0];
 /// How far capping may take a vertex from S, in mean edge lengths.
 const MAX_DISTANCE_FROM_S: f64 = 0.1;
 /// The hold of each vertex along S (see `TangentialHold`).
@@ -185,7 +185,7 @@ impl<'a> CappingProblem<'a> {
             .collect();
         let block = QuadNormalBlock { start: x.len() };
         for q in 0..cover.quads.len() {
-            x.extend(best_fit_normal(cover.corners(&normalized.vertices, q), &surface).to_array());
+            x.extend(best_fit_normal(cover.corners(&normalized.vertices, q), surface).to_array());
         }
         let dummies = MinEdgeLength::initial_dummies(&conn.edges, MIN_EDGE, &normalized.vertices);
         let dummy_start = x.len();
