@@ -3,6 +3,7 @@
 mod broken_cells;
 mod dual_normals;
 mod frame;
+mod kept_walls;
 mod made_mesh;
 mod problem;
 mod quads;
@@ -519,13 +520,7 @@ pub fn capped(
 ) -> Result<Optimized> {
     let h = &solved.honeycomb;
     let conn = &solved.connectivity;
-    // The walls as realized: each through its edge and the axes at its ends.
-    let normals: Vec<Vec3> = (conn.edges.iter())
-        .map(|&[a, b]| {
-            let edge = h.base.vertices[b] - h.base.vertices[a];
-            edge.cross(h.axes[a] + h.axes[b]).normalized()
-        })
-        .collect();
+    let normals = kept_walls::realized_normals(h, conn);
     let capped = quads::cap(h, conn, &normals, surface, options, solver, progress)?;
     let mesh = PolyMesh::new(capped.vertices, h.base.faces.clone());
     let axes = node_axes(conn, &normals, |v| h.axes[v]);

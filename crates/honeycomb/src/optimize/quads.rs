@@ -4,11 +4,12 @@
 
 pub use crate::structure::QuadPattern;
 
+use super::kept_walls::kept_wall_families;
 use super::variants::check_weight;
 use super::Frame;
 use crate::constraints::{
-    Closeness, FixedNormalRow, FixedNormals, Layout, MinEdgeLength, QuadNormalBlock,
-    QuadNormalization, QuadPlanarity, TangentialHold, ZigzagFairness,
+    FixedNormalRow, FixedNormals, Layout, MinEdgeLength, QuadNormalBlock, QuadNormalization,
+    QuadPlanarity, ZigzagFairness,
 };
 use crate::error::{Error, Result};
 use crate::geometry::{smallest_eigenvector, sum_of_outer_products, Vec3};
@@ -69,8 +70,6 @@ const FAIRNESS_ROLE: Role = Role::Condition;
 /// Which sides of a quad get a planarity row: all four (see `QuadPlanarity::sides`).
 const SIDES: [usize; 4] = [0, 1, 2, 3];
 
-/// The kept walls hold to roundoff: everything else gives way to them.
-const KEPT_WALLS_WEIGHT: f64 = 1000.0;
 /// Closeness to S, soft: the freedom to planarize lies mostly across S (each vertex slides
 /// along its node axis), and this is what it costs. Tried in turn until no vertex is farther
 /// than `MAX_DISTANCE_FROM_S` from S and no wall crosses itself (the last is kept if no wall
@@ -78,8 +77,6 @@ const KEPT_WALLS_WEIGHT: f64 = 1000.0;
 const CLOSENESS_WEIGHTS: [f64; 3] = [0.3, 1.0, 3.0];
 /// How far capping may take a vertex from S, in mean edge lengths.
 const MAX_DISTANCE_FROM_S: f64 = 0.1;
-/// The hold of each vertex along S (see `TangentialHold`).
-const HOLD_WEIGHT: f64 = 0.3;
 
 /// Every edge stays at least this long (mean edge lengths): a quad with a vanishing side is
 /// a triangle, so planarity pulls at short edges, and where the axes at an edge's ends lean
@@ -190,44 +187,27 @@ impl<'a> CappingProblem<'a> {
         let dummies = MinEdgeLength::initial_dummies(&conn.edges, MIN_EDGE, &normalized.vertices);
         let dummy_start = x.len();
         x.extend(dummies);
-        let walls = (conn.edges.iter().zip(normals))
-            .map(|(&[a, b], &normal)| FixedNormalRow { normal, a, b })
-            .collect();
-        let mut families: Vec<Box<dyn Constraint + 'a>> = vec![
-            Box::new(FixedNormals {
-                name: "kept_walls",
-                layout,
-                rows: walls,
-                weight: KEPT_WALLS_WEIGHT,
-                role: Role::Condition,
-            }),
-            Box::new(Closeness::new(layout, surface, closeness)),
-            Box::new(TangentialHold::new(
-                layout,
-                &normalized.vertices,
-                |p| surface.normal_at(p),
-                HOLD_WEIGHT,
-            )),
-            Box::new(MinEdgeLength::new(
-                layout,
-                conn.edges.clone(),
-                MIN_EDGE,
-                dummy_start,
-                1.0,
-            )),
-            Box::new(QuadNormalization {
-                block,
-                num_quads: cover.quads.len(),
-                weight: 1.0,
-            }),
-            Box::new(QuadPlanarity {
-                layout,
-                block,
-                quads: cover.quads.clone(),
-                sides: SIDES.to_vec(),
-                weight: options.w_cons_faces,
-            }),
-        ];
+        let mut families =
+            kept_wall_families(layout, normalized, conn, normals, surface, closeness);
+        families.push(Box::new(MinEdgeLength::new(
+            layout,
+            conn.edges.clone(),
+            MIN_EDGE,
+            dummy_start,
+            1.0,
+        )));
+        families.push(Box::new(QuadNormalization {
+            block,
+            num_quads: cover.quads.len(),
+            weight: 1.0,
+        }));
+        families.push(Box::new(QuadPlanarity {
+            layout,
+            block,
+            quads: cover.quads.clone(),
+            sides: SIDES.to_vec(),
+            weight: options.w_cons_faces,
+        }));
         if options.w_fair_zigzag > 0.0 && !cover.zigzag_runs.is_empty() {
             families.push(Box::new(ZigzagFairness {
                 layout,
