@@ -230,6 +230,21 @@ impl SolveArgs {
                     .into(),
             ));
         }
+        let given: Vec<&str> = [
+            (self.parallel, "--parallel"),
+            (self.quads.is_some(), "--quads"),
+            (self.axes.is_some(), "--axes"),
+            (self.light.is_some(), "--light"),
+        ]
+        .into_iter()
+        .filter_map(|(given, flag)| given.then_some(flag))
+        .collect();
+        if given.len() > 1 {
+            return Err(Error::Parameter(format!(
+                "{}: one variant at a time",
+                given.join(" and ")
+            )));
+        }
         let variant = if self.parallel {
             Variant::Parallel {
                 depth: self.depth,

@@ -511,13 +511,18 @@ fn cell_points_with_a_variant() {
     let dir = TempDir::new("cell_points_with_a_variant");
     optimize_with_fails(
         &dir,
-        &["--cell-points", "--quads", "zigzag"],
+        &["--cell-points", "--light", "1,0,-1"],
         &["--cell-points", "plain honeycomb"],
     );
     optimize_with_fails(
         &dir,
         &["--cell-points", "--parallel"],
         &["--cell-points", "--parallel"],
+    );
+    optimize_with_fails(
+        &dir,
+        &["--parallel", "--quads", "zigzag"],
+        &["--parallel and --quads", "one variant at a time"],
     );
 }
 

@@ -254,19 +254,22 @@ impl Options {
             check_positive_length("min_edge", l)?;
         }
         self.weights().validate()?;
-        if !self.variant.is_plain() && self.walls != Walls::Across {
+        // Quads cap the plain honeycomb; the other variants solve the base mesh as given.
+        let caps = matches!(self.variant, Variant::Plain | Variant::Quads { .. });
+        if !caps && self.walls != Walls::Across {
             return Err(Error::option(
                 "walls",
                 self.walls.label(),
-                "the walls shape the plain honeycomb; the variants solve the base mesh as \
-                 given",
+                "the walls shape the plain honeycomb (and the one quads cap); parallel meshes \
+                 and prescribed axes solve the base mesh as given",
             ));
         }
-        if !self.variant.is_plain() && self.wall_normals == WallNormals::CellPoints {
+        if !caps && self.wall_normals == WallNormals::CellPoints {
             return Err(Error::option(
                 "wall_normals",
                 "cell_points",
-                "only for the plain honeycomb (the variants constrain the normals one by one)",
+                "only for the plain honeycomb and the one quads cap (parallel meshes and \
+                 prescribed axes constrain the normals one by one)",
             ));
         }
         match &self.variant {
