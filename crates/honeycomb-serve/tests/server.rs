@@ -413,6 +413,22 @@ fn a_new_page_starts_from_the_shared_state_without_its_undo_history() {
     server.stop();
 }
 
+/// The warning a page is told and the state all pages are sent after it, in either order: the
+/// two travel different ways and may arrive crossed.
+fn warning_and_state(c: &mut Client) -> (Value, Value) {
+    let (mut warning, mut state) = (None, None);
+    while warning.is_none() || state.is_none() {
+        let m = c.receive().unwrap();
+        match m["type"].as_str() {
+            Some("warning") => warning = Some(m),
+            Some("state") if state.is_none() => state = Some(m),
+            Some("error") => panic!("the editor says: {}", m["message"]),
+            _ => {}
+        }
+    }
+    (warning.unwrap(), state.unwrap())
+}
+
 /// A slide stops at `MAX_SLIDE_OFF_S` mean edge lengths from S, and the page hears why; a
 /// small one that stays on S goes through without a word.
 #[test]
@@ -425,14 +441,13 @@ fn a_slide_off_s_is_stopped_at_the_limit_with_a_warning() {
     // What a 48-pixel drag asked for: several edge lengths away from S.
     c.send(&json!({"type": "slide", "vertex": v, "distance": -5.0 * edge, "stroke": 1}))
         .unwrap();
-    let w = c.until("warning", |_| true).unwrap();
+    let (w, s) = warning_and_state(&mut c);
     let text = w["message"].as_str().unwrap();
     assert!(
         text.contains(&format!("slide of vertex {v} stopped")) && text.contains("off S"),
         "{text}"
     );
     assert!(text.contains("model units"), "{text}");
-    let s = c.until("state", |_| true).unwrap();
     let off = s["measures"]["closeness_max"].as_f64().unwrap();
     assert!(
         (off - MAX_SLIDE_OFF_S).abs() < 5e-3,
@@ -441,8 +456,7 @@ fn a_slide_off_s_is_stopped_at_the_limit_with_a_warning() {
     // Further out: refused, the vertex stays at the limit.
     c.send(&json!({"type": "slide", "vertex": v, "distance": -edge, "stroke": 1}))
         .unwrap();
-    c.until("warning", |_| true).unwrap();
-    let s = c.until("state", |_| true).unwrap();
+    let (_, s) = warning_and_state(&mut c);
     assert!(s["measures"]["closeness_max"].as_f64().unwrap() < MAX_SLIDE_OFF_S + 5e-3);
     // Back towards S is always allowed.
     c.send(&json!({"type": "slide", "vertex": v, "distance": 0.1 * edge, "stroke": 1}))
