@@ -157,20 +157,25 @@ impl SolveArgs {
         self.parallel || self.axes.is_some() || self.light.is_some()
     }
 
-    /// `--walls`, checked: `across` unless given; refused with a variant.
+    /// `--walls`, checked: `across` unless given; with --parallel across or free only;
+    /// refused with the other variants.
     pub fn walls(&self) -> Result<Walls> {
         let Some(text) = &self.walls else {
             return Ok(Walls::Across);
         };
-        if self.is_variant() {
+        let walls: Walls = text
+            .parse()
+            .map_err(|m: String| Error::Parameter(format!("--walls {m}")))?;
+        let paired = self.parallel && matches!(walls, Walls::Across | Walls::Free);
+        if self.is_variant() && !paired {
             return Err(Error::Parameter(
-                "--walls shapes the plain honeycomb (and the one --quads caps); --parallel, \
-                 --axes and --light solve from the base mesh as given"
+                "--walls shapes the plain honeycomb (and the one --quads caps); --parallel \
+                 stands on walls across S (pipeline) or free ones, --axes and --light solve \
+                 from the base mesh as given"
                     .into(),
             ));
         }
-        text.parse()
-            .map_err(|m: String| Error::Parameter(format!("--walls {m}")))
+        Ok(walls)
     }
 
     /// The library's options from the flags, checked; `--axes` is read by [`Self::options_for`]

@@ -172,12 +172,7 @@ impl Report {
         let (Some(mesh), Some(cover)) = (&capped.quads, &capped.quad_cover) else {
             return;
         };
-        self.iterations += s.iterations;
-        self.iterations_total += s.iterations;
-        self.converged = s.converged;
-        self.thickness = capped.honeycomb.thickness;
-        self.honeycomb = Self::within_tolerances(m);
-        self.measures = m.clone();
+        self.followed_by(capped, m);
         self.quads = Some(QuadCoverReport {
             quad_pattern: cover.pattern,
             // From the written quad mesh, whose split quads come first.
@@ -188,6 +183,25 @@ impl Report {
                 delta_face_avg_before: before.delta_face_avg,
             }),
         });
+    }
+
+    /// This report (of the honeycomb `paired` was paired on) turned into the parallel
+    /// meshes' one, measured `m` from their meshes; the pairing solve's iterations count in.
+    pub fn paired(&mut self, paired: &Optimized, m: &Measures) {
+        self.followed_by(paired, m);
+        self.parallel = Some(parallel_measures(&paired.honeycomb));
+    }
+
+    /// This report followed by a solve on the finished honeycomb that keeps its walls
+    /// (`next`, measured `m`): its iterations add up, the rest is the later solve's.
+    fn followed_by(&mut self, next: &Optimized, m: &Measures) {
+        let s = &next.solve;
+        self.iterations += s.iterations;
+        self.iterations_total += s.iterations;
+        self.converged = s.converged;
+        self.thickness = next.honeycomb.thickness;
+        self.honeycomb = Self::within_tolerances(m);
+        self.measures = m.clone();
         self.residuals = s.families.clone();
         self.history = s.history.clone();
     }

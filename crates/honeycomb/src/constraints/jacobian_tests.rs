@@ -7,8 +7,8 @@ use crate::geometry::Vec3;
 use crate::mesh::Connectivity;
 use crate::mesh::PolyMesh;
 use crate::optimize::{
-    initial_normals, AxesOptions, CappingProblem, Frame, OptimizeOptions, ParallelOptions, Problem,
-    ProblemBuilder, QuadOptions, QuadPattern, WallRows, Weights,
+    initial_normals, AxesOptions, CappingProblem, Frame, OptimizeOptions, PairingProblem,
+    ParallelOptions, Problem, ProblemBuilder, QuadOptions, QuadPattern, WallRows, Weights,
 };
 use crate::solve::{jacobian_fd_error, Constraint};
 use crate::surface::Surface;
@@ -193,6 +193,39 @@ fn capping_families_match_finite_differences() {
         ];
         assert_families_match(&mut problem.families, &problem.x, &expected);
     }
+}
+
+/// The pairing of parallel meshes on a honeycomb's walls: the bilinear parallelity of each
+/// edge and its twin, the holds on S and at the nominal depth, off any solution.
+#[test]
+fn pairing_families_match_finite_differences() {
+    let (frame, mesh, surface, conn) = saddle();
+    let normals = initial_normals(&mesh, &conn, &surface);
+    let axes: Vec<Vec3> = (0..mesh.vertices.len())
+        .map(|v| surface.normal_at(mesh.vertices[v]) + Vec3::new(0.1 * jitter(v), 0.0, 0.0))
+        .map(Vec3::normalized)
+        .collect();
+    let model = PolyMesh::new(
+        mesh.vertices.iter().map(|&p| frame.to_model(p)).collect(),
+        mesh.faces.clone(),
+    );
+    let honeycomb = crate::structure::Honeycomb::new(model, &conn, axes, 0.3 * frame.unit);
+    let options = ParallelOptions::default();
+    let mut problem = PairingProblem::build(
+        &honeycomb,
+        &Frame::of(&honeycomb.base),
+        &conn,
+        &normals,
+        0.3,
+        &options,
+        0.3,
+    );
+    assert_eq!(problem.x.len(), 2 * mesh.vertices.len());
+    for (i, xi) in problem.x.iter_mut().enumerate() {
+        *xi += 0.05 * jitter(i + 11);
+    }
+    let expected = ["parallel_on_axes", "on_s", "depth"];
+    assert_families_match(&mut problem.families, &problem.x, &expected);
 }
 
 #[test]

@@ -254,14 +254,19 @@ impl Options {
             check_positive_length("min_edge", l)?;
         }
         self.weights().validate()?;
-        // Quads cap the plain honeycomb; the other variants solve the base mesh as given.
+        // Quads cap the plain honeycomb, and the pipeline pairs parallel meshes on its walls
+        // across S (free walls: parallel meshes solved with the walls, the paper's way); the
+        // other variants solve the base mesh as given.
         let caps = matches!(self.variant, Variant::Plain | Variant::Quads { .. });
-        if !caps && self.walls != Walls::Across {
+        let pairs = matches!(self.variant, Variant::Parallel { .. })
+            && matches!(self.walls, Walls::Across | Walls::Free);
+        if !caps && !pairs && self.walls != Walls::Across {
             return Err(Error::option(
                 "walls",
                 self.walls.label(),
                 "the walls shape the plain honeycomb (and the one quads cap); parallel meshes \
-                 and prescribed axes solve the base mesh as given",
+                 stand on walls across S or free ones, and prescribed axes solve the base mesh \
+                 as given",
             ));
         }
         if !caps && self.wall_normals == WallNormals::CellPoints {
@@ -321,6 +326,12 @@ impl Options {
             fairness: self.w_fair.unwrap_or(Weights::default().fairness),
             guide: self.w_guide,
         }
+    }
+
+    /// Parallel meshes the pipeline pairs on the walls of its honeycomb (walls across S)
+    /// rather than solves with them (free walls).
+    pub(crate) fn paired_parallel(&self) -> Result<Option<ParallelOptions>> {
+        Ok(self.parallel()?.filter(|_| self.walls != Walls::Free))
     }
 
     fn parallel(&self) -> Result<Option<ParallelOptions>> {

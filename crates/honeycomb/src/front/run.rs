@@ -5,7 +5,9 @@ use crate::analysis::{extruded_along_normals, shading_report};
 use crate::error::{Error, Result};
 use crate::init::{CellSize, InitOptions};
 use crate::mesh::check_base_near_surface;
-use crate::optimize::{capped, optimize as solve, OptimizeOptions, Optimized, QuadOptions};
+use crate::optimize::{
+    capped, optimize as solve, paired, OptimizeOptions, Optimized, ParallelOptions, QuadOptions,
+};
 use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Strategy};
 use crate::reciprocal::AcrossOptions;
 use crate::report::Report;
@@ -53,8 +55,12 @@ impl PipelineOptions {
         }
         let mut optimize = self.options.optimize_options()?;
         optimize.solver.cancel = progress.cancel_handle();
-        // Quads cap the pipeline's honeycomb afterwards (see `cap_with_quads`).
+        // Quads cap the pipeline's honeycomb afterwards (see `cap_with_quads`), and parallel
+        // meshes are paired on its walls (see `pair_on_walls`).
         optimize.quads = None;
+        if self.options.paired_parallel()?.is_some() {
+            optimize.parallel = None;
+        }
         Ok(Strategy {
             init: self.init.clone(),
             init_chosen: self.init_chosen,
@@ -186,6 +192,27 @@ fn cap_with_quads(
     Ok((capped, report))
 }
 
+/// What the pairing solve is called in [`Step::Iteration`].
+const PAIRING_SOLVE: &str = "parallel meshes";
+
+/// The honeycomb `optimized` (reported in `report`) as parallel meshes M, M' on its walls
+/// (see `optimize::paired`), its report turned into theirs.
+fn pair_on_walls(
+    optimized: Optimized,
+    mut report: Report,
+    surface: &Surface,
+    parallel: &ParallelOptions,
+    options: &OptimizeOptions,
+    progress: &mut Progress,
+) -> Result<(Optimized, Report)> {
+    let paired = paired(optimized, parallel, &options.solver, &mut |info| {
+        progress.step(Step::Iteration(PAIRING_SOLVE, 1, info))
+    })?;
+    let measures = measure(&paired.honeycomb, surface);
+    report.paired(&paired, &measures);
+    Ok((paired, report))
+}
+
 /// Makes a honeycomb on the design surface `surface` from nothing else: a hexagonal base
 /// mesh of about `init`'s cells, walls as asked, and the retries that it takes.
 ///
@@ -214,6 +241,12 @@ pub fn pipeline(
         let start = Instant::now() - std::time::Duration::from_secs_f64(report.seconds);
         (optimized, report) =
             cap_with_quads(optimized, report, surface, q, &strategy.optimize, progress)?;
+        report.seconds = start.elapsed().as_secs_f64();
+    }
+    if let Some(p) = &options.options.paired_parallel()? {
+        let start = Instant::now() - std::time::Duration::from_secs_f64(report.seconds);
+        (optimized, report) =
+            pair_on_walls(optimized, report, surface, p, &strategy.optimize, progress)?;
         report.seconds = start.elapsed().as_secs_f64();
     }
     let mut out = outcome(optimized, report, made.base, None);

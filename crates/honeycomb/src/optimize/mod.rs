@@ -5,6 +5,7 @@ mod dual_normals;
 mod frame;
 mod kept_walls;
 mod made_mesh;
+mod parallel_pair;
 mod problem;
 mod quads;
 mod unknowns;
@@ -16,7 +17,11 @@ pub use broken_cells::{
     without_cells, Settled, MAX_DROPPED_SHARE,
 };
 pub use frame::Frame;
+#[cfg(test)]
+pub(crate) use kept_walls::realized_normals;
 pub use made_mesh::{optimize_made_mesh, Attempt};
+#[cfg(test)]
+pub(crate) use parallel_pair::{pair, PairingProblem};
 pub use problem::{block_positions, initial_normals, node_walls, ProblemBuilder, WallRows};
 #[cfg(test)]
 pub use problem::{boundary_vertices_on_surface_boundary, families};
@@ -531,6 +536,29 @@ pub fn capped(
         honeycomb,
         solve: capped.solve,
         normals,
+        ..solved
+    })
+}
+
+/// `solved` (a plain honeycomb) as parallel meshes M, M' (see [`parallel_pair::pair`]): its
+/// walls and node axes kept, M and M' placed on the axes; `solve` is the pairing solve's.
+pub fn paired(
+    solved: Optimized,
+    options: &ParallelOptions,
+    solver: &SolverOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Optimized> {
+    let h = &solved.honeycomb;
+    let conn = &solved.connectivity;
+    let normals = kept_walls::realized_normals(h, conn);
+    let paired = parallel_pair::pair(h, conn, &normals, options, solver, progress)?;
+    let mesh = PolyMesh::new(paired.vertices, h.base.faces.clone());
+    let honeycomb = Honeycomb::with_offset(mesh, conn, paired.offset);
+    Ok(Optimized {
+        honeycomb,
+        solve: paired.solve,
+        normals,
+        parallel: true,
         ..solved
     })
 }

@@ -4,6 +4,7 @@
 mod edit;
 mod init;
 mod optimize;
+mod parallel;
 mod quads;
 mod variants;
 
