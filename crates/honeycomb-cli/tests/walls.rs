@@ -275,3 +275,42 @@ fn bench_roofs_has_a_row_per_surface() {
     assert!(table.status.success());
     assert!(stdout(&table).lines().next().unwrap().contains("axis"));
 }
+
+/// `pipeline --parallel` writes M and M' on walls across S with their edges parallel, as the
+/// written meshes show; `--walls free` is the paper's simultaneous solve instead.
+#[test]
+fn pipeline_pairs_parallel_meshes_on_walls_across() {
+    let tmp = TempDir::new("walls-parallel");
+    let dome = surface_file(&tmp, "dome");
+    let dir = tmp.join("paired");
+    let out = pipeline(&dome, &dir, &["--parallel"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = read_json(&dir, "report.json");
+    assert_eq!(report["walls"], "across");
+    let m = read_written_mesh(&dir.join("base.obj"));
+    let offset = read_written_mesh(&dir.join("offset.obj"));
+    let mut beta_max = 0.0f64;
+    for face in &m.faces {
+        for k in 0..face.len() {
+            let (a, b) = (face[k], face[(k + 1) % face.len()]);
+            let (e, twin) = (
+                m.vertices[b] - m.vertices[a],
+                offset.vertices[b] - offset.vertices[a],
+            );
+            beta_max = beta_max.max(e.cross(twin).norm().atan2(e.dot(twin)).to_degrees());
+        }
+    }
+    assert!(beta_max <= 0.5, "beta_max {beta_max}");
+    assert!(
+        (number(&report, "beta_max_deg") - beta_max).abs() < 1e-6,
+        "{report}"
+    );
+    assert!(
+        number(&report["axis_normal_deg"], "mean")
+            < number(&report["parallel_baseline_deg"], "mean")
+    );
+    let free = tmp.join("free");
+    let out = pipeline(&dome, &free, &["--parallel", "--walls", "free"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_eq!(read_json(&free, "report.json")["walls"], "free");
+}
