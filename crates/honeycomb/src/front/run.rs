@@ -237,18 +237,17 @@ pub fn pipeline(
     crate::limits::check_solve_cells(&options.init, surface.source_mesh())?;
     let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
     let (mut optimized, mut report) = (made.optimized, made.report);
+    // The report's seconds count the work on the finished honeycomb too.
+    let start = Instant::now() - std::time::Duration::from_secs_f64(report.seconds);
     if let Some(q) = &options.options.quads()? {
-        let start = Instant::now() - std::time::Duration::from_secs_f64(report.seconds);
         (optimized, report) =
             cap_with_quads(optimized, report, surface, q, &strategy.optimize, progress)?;
-        report.seconds = start.elapsed().as_secs_f64();
     }
     if let Some(p) = &options.options.paired_parallel()? {
-        let start = Instant::now() - std::time::Duration::from_secs_f64(report.seconds);
         (optimized, report) =
             pair_on_walls(optimized, report, surface, p, &strategy.optimize, progress)?;
-        report.seconds = start.elapsed().as_secs_f64();
     }
+    report.seconds = start.elapsed().as_secs_f64();
     let mut out = outcome(optimized, report, made.base, None);
     out.initialized = Some(made.initialized.report);
     Ok(out)

@@ -11,7 +11,7 @@ use crate::error::Result;
 use crate::geometry::Vec3;
 use crate::mesh::Connectivity;
 use crate::solve::{Constraint, GuidedProjection, IterationInfo, SolveReport, SolverOptions};
-use crate::structure::{angle_deg, Honeycomb};
+use crate::structure::{betas_deg, Honeycomb};
 
 /// The hold of each vertex on S (its slide along the axis, per mean edge length), tried from
 /// firm to loose until the edges of M and M' are within [`BETA_ACCEPTED_DEG`]: the freedom to
@@ -83,7 +83,7 @@ pub(crate) fn pair(
             last_solve = Some(solve);
             continue;
         }
-        let beta = max_beta_deg(&vertices, &offset, &conn.edges);
+        let beta = betas_deg(&vertices, &offset, &conn.edges).fold(0.0, f64::max);
         let paired = Paired {
             vertices: vertices.into_iter().map(|p| frame.to_model(p)).collect(),
             offset: offset.into_iter().map(|p| frame.to_model(p)).collect(),
@@ -110,13 +110,6 @@ pub(crate) fn pair(
             solve: last_solve.expect("a try ran"),
         },
     })
-}
-
-/// The largest angle between an edge of M and its twin in M' (degrees).
-fn max_beta_deg(m: &[Vec3], offset: &[Vec3], edges: &[[usize; 2]]) -> f64 {
-    (edges.iter())
-        .map(|&[a, b]| angle_deg(m[a] - m[b], offset[a] - offset[b]))
-        .fold(0.0, f64::max)
 }
 
 /// The pairing solve's unknowns (each vertex's slide along its axis, then its depth, in the

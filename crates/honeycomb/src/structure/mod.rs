@@ -18,6 +18,8 @@ pub use quad_cover::QuadPattern;
 pub(crate) use quad_measures::face_measures;
 pub(crate) use quad_measures::quad_mesh_measures;
 pub use quad_measures::FaceMeasures;
+#[cfg(test)]
 pub(crate) use variant_measures::angle_deg;
+pub(crate) use variant_measures::betas_deg;
 pub(crate) use variant_measures::{axes_measures, parallel_measures};
 pub use variant_measures::{AxesMeasures, ParallelMeasures};

@@ -16,12 +16,7 @@ pub struct ParallelMeasures {
 }
 
 pub fn parallel_measures(h: &Honeycomb) -> ParallelMeasures {
-    let (m, o) = (&h.base.vertices, &h.offset.vertices);
-    let betas: Vec<f64> = h
-        .edges
-        .iter()
-        .map(|&[a, b]| angle_deg(m[a] - m[b], o[a] - o[b]))
-        .collect();
+    let betas: Vec<f64> = betas_deg(&h.base.vertices, &h.offset.vertices, &h.edges).collect();
     let (depth_min, depth_max) = h.depths().fold((f64::INFINITY, 0.0f64), |(lo, hi), d| {
         (lo.min(d), hi.max(d))
     });
@@ -31,6 +26,15 @@ pub fn parallel_measures(h: &Honeycomb) -> ParallelMeasures {
         depth_min,
         depth_max,
     }
+}
+
+/// The angle between each edge `m_a m_b` of M and its twin `o_a o_b` in M' (degrees).
+pub(crate) fn betas_deg<'a>(
+    m: &'a [Vec3],
+    o: &'a [Vec3],
+    edges: &'a [[usize; 2]],
+) -> impl Iterator<Item = f64> + 'a {
+    (edges.iter()).map(|&[a, b]| angle_deg(m[a] - m[b], o[a] - o[b]))
 }
 
 /// Prescribed axes: the angle between each realized node axis (the line `v_i v'_i`) and its

@@ -5,7 +5,7 @@ use crate::generate::{design_surface, hex_disk, Shape};
 use crate::mesh::Connectivity;
 use crate::optimize::{pair, realized_normals, ParallelOptions};
 use crate::solve::SolverOptions;
-use crate::structure::{angle_deg, measure, Honeycomb};
+use crate::structure::{betas_deg, measure, Honeycomb};
 use crate::surface::Surface;
 use crate::{pipeline, PipelineOptions, Progress, Variant, Vec3, Walls};
 
@@ -19,10 +19,7 @@ fn parallel() -> Variant {
 
 /// The angle of every edge of M to its twin in M' (degrees), from the meshes.
 fn betas(h: &Honeycomb) -> Vec<f64> {
-    let (m, o) = (&h.base.vertices, &h.offset.vertices);
-    (h.edges.iter())
-        .map(|&[a, b]| angle_deg(m[a] - m[b], o[a] - o[b]))
-        .collect()
+    betas_deg(&h.base.vertices, &h.offset.vertices, &h.edges).collect()
 }
 
 /// On every generated surface the pipeline's parallel meshes stand on walls across S: the
