@@ -175,13 +175,6 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
                 .into(),
         ));
     }
-    if args.opts.light.is_some() {
-        return Err(Error::Parameter(
-            "--light prescribes axes from the base mesh's vertices, and pipeline makes its own \
-             mesh: run `init`, then `optimize --light`"
-                .into(),
-        ));
-    }
     let init = args.init.options()?;
     let options = PipelineOptions {
         init,

@@ -167,11 +167,12 @@ impl SolveArgs {
             .parse()
             .map_err(|m: String| Error::Parameter(format!("--walls {m}")))?;
         let paired = self.parallel && matches!(walls, Walls::Across | Walls::Free);
-        if self.is_variant() && !paired {
+        let shading = self.light.is_some() && walls == Walls::Across;
+        if self.is_variant() && !paired && !shading {
             return Err(Error::Parameter(
                 "--walls shapes the plain honeycomb (and the one --quads caps); --parallel \
-                 stands on walls across S (pipeline) or free ones, --axes and --light solve \
-                 from the base mesh as given"
+                 stands on walls across S (pipeline) or free ones, --light on walls across S \
+                 turned across the light, and --axes solves from the base mesh as given"
                     .into(),
             ));
         }
@@ -431,8 +432,27 @@ pub fn finish(
         }
         Output::Quiet => {}
     }
+    if let (Some(s), Output::Human) = (&report.shading, output) {
+        println!(
+            "light share {} -> {} (the same cells along S's normals -> these walls, {} deep){}",
+            rounded(s.light.before, 3),
+            rounded(s.light.after, 3),
+            rounded(s.depth, 4),
+            s.sun_path_mean.as_ref().map_or(String::new(), |m| format!(
+                "; over the sun path {} -> {}",
+                rounded(m.before, 3),
+                rounded(m.after, 3)
+            ))
+        );
+    }
     let Some(why) = &outcome.verdict.why else {
-        return Ok(());
+        return match &outcome.verdict.unmet {
+            Some(unmet) => Err(Error::Solver(format!(
+                "the shading falls short: {unmet}; the outputs in {} are for inspection",
+                dir.display()
+            ))),
+            None => Ok(()),
+        };
     };
     Err(Error::Solver(format!(
         "the result is {why}; the outputs in {} are for inspection. More --iterations or a \

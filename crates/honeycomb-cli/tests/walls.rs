@@ -314,3 +314,47 @@ fn pipeline_pairs_parallel_meshes_on_walls_across() {
     assert!(out.status.success(), "{}", stderr(&out));
     assert_eq!(read_json(&free, "report.json")["walls"], "free");
 }
+
+/// `pipeline --light` from a surface alone: walls across S turned across the light, as deep
+/// as 1.5 mean edge lengths, every wall planar (measured on the written walls.obj), half the
+/// light or less let through; other walls are refused by name.
+#[test]
+fn pipeline_shades_with_walls_turned_across_the_light() {
+    let tmp = TempDir::new("walls-light");
+    let dome = surface_file(&tmp, "dome");
+    let dir = tmp.join("shaded");
+    let out = pipeline(&dome, &dir, &["--light", "0.5,0.3,-0.8"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("light share"));
+    let report = read_json(&dir, "report.json");
+    assert_eq!(report["walls"], "across");
+    let shading = &report["shading"];
+    assert_eq!(shading["met"], true);
+    let light = &shading["light"];
+    assert!(
+        number(light, "after") <= 0.5 * number(light, "before"),
+        "{light}"
+    );
+    let walls = read_written_mesh(&dir.join("walls.obj"));
+    let base = read_written_mesh(&dir.join("base.obj"));
+    let unit = base.mean_edge_length();
+    let mut deepest = 0.0f64;
+    for wall in &walls.faces {
+        let p: Vec<_> = wall.iter().map(|&v| walls.vertices[v]).collect();
+        let normal = (p[2] - p[0]).cross(p[3] - p[1]).normalized();
+        let off = (p[1] - p[0])
+            .dot(normal)
+            .abs()
+            .max((p[3] - p[0]).dot(normal).abs());
+        assert!(off < 1e-6 * unit, "wall off its plane by {off}");
+        deepest = deepest.max((p[3] - p[0]).norm());
+    }
+    assert!((deepest / unit - 1.5).abs() < 0.05, "{deepest} / {unit}");
+    let refused = pipeline(
+        &dome,
+        &tmp.join("free"),
+        &["--light", "0,0,-1", "--walls", "free"],
+    );
+    assert!(!refused.status.success());
+    assert!(stderr(&refused).contains("--walls"), "{}", stderr(&refused));
+}

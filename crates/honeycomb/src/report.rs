@@ -192,6 +192,15 @@ impl Report {
         self.parallel = Some(parallel_measures(&paired.honeycomb));
     }
 
+    /// This report turned into that of the same walls made deeper for shading (`deep`,
+    /// measured `m`), with the light they let through.
+    pub fn deepened(&mut self, deep: &Honeycomb, m: &Measures, shading: ShadingReport) {
+        self.thickness = deep.thickness;
+        self.honeycomb = Self::within_tolerances(m);
+        self.measures = m.clone();
+        self.shading = Some(shading);
+    }
+
     /// This report followed by a solve on the finished honeycomb that keeps its walls
     /// (`next`, measured `m`): its iterations add up, the rest is the later solve's.
     fn followed_by(&mut self, next: &Optimized, m: &Measures) {

@@ -231,11 +231,16 @@ pub const REPORT_KEYS: [&str; 10] = [
 
 /// `honeycomb demo EXTRA... -q -o DIR`, which must succeed.
 pub fn demo(dir: &Path, extra: &[&str]) {
+    let out = run_demo(dir, extra);
+    assert!(out.status.success(), "demo {extra:?}: {}", stderr(&out));
+}
+
+/// `honeycomb demo EXTRA... -q -o DIR`.
+pub fn run_demo(dir: &Path, extra: &[&str]) -> Output {
     let mut args: Vec<&str> = vec!["demo"];
     args.extend_from_slice(extra);
     args.extend(["-q", "-o", dir.to_str().expect("utf-8 path")]);
-    let out = run(&args);
-    assert!(out.status.success(), "demo {extra:?}: {}", stderr(&out));
+    run(&args)
 }
 
 /// `DIR/NAME` parsed as JSON.

@@ -7,5 +7,8 @@ mod spherical_area;
 mod spherical_image;
 
 pub use light::{light_share, read_directions, LightShare, DEFAULT_LIGHT_SAMPLES};
-pub use shading::{extruded_along_normals, shading_report, LightComparison, ShadingReport};
+pub use shading::{
+    extruded_along_normals, shading_report, LightComparison, ShadingReport, Shares, SHADING_DEPTH,
+    SHADING_GOAL,
+};
 pub use spherical_image::{spherical_image, CellImage, SphericalImage};

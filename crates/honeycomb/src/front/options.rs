@@ -9,6 +9,7 @@ use crate::optimize::{
     WallNormals, Weights,
 };
 use crate::pipeline::Walls;
+use crate::reciprocal::AxisTargets;
 use crate::solve::SolverOptions;
 use crate::structure::QuadPattern;
 use crate::surface::Surface;
@@ -328,6 +329,23 @@ impl Options {
         }
     }
 
+    /// Shading, as the pipeline and `optimize` make it: the light (unit), the sun path and
+    /// the depth asked.
+    pub(crate) fn shading(&self) -> Result<Option<Shading>> {
+        let Variant::Shading {
+            light, sun_path, ..
+        } = &self.variant
+        else {
+            return Ok(None);
+        };
+        self.validate()?;
+        Ok(Some(Shading {
+            light: unit_light(*light)?,
+            sun_path: sun_path.clone(),
+            depth: self.thickness,
+        }))
+    }
+
     /// Parallel meshes the pipeline pairs on the walls of its honeycomb (walls across S)
     /// rather than solves with them (free walls).
     pub(crate) fn paired_parallel(&self) -> Result<Option<ParallelOptions>> {
@@ -401,6 +419,25 @@ impl Options {
         options.axes = axes;
         options.validate(base)?;
         Ok(options)
+    }
+}
+
+/// A shading device asked for (see [`Options::shading`]).
+#[derive(Clone, Debug)]
+pub(crate) struct Shading {
+    pub light: Vec3,
+    pub sun_path: Vec<Vec3>,
+    /// The walls' depth (model units); `None`: [`crate::analysis::SHADING_DEPTH`] mean edge
+    /// lengths.
+    pub depth: Option<f64>,
+}
+
+impl Shading {
+    /// What the node axes are fitted to: S's normals turned across the light and the sun
+    /// path by at most `max_tilt` radians.
+    pub fn targets(&self, max_tilt: f64) -> AxisTargets {
+        let path: Vec<Vec3> = self.sun_path.iter().map(|d| d.normalized()).collect();
+        AxisTargets::across_light(self.light, &path, max_tilt)
     }
 }
 

@@ -35,6 +35,9 @@ pub struct Verdict {
     /// Where wall quads cross because the axes at their ends lean together: the thickness
     /// below which none does (model units), if that is less than the structure's.
     pub uncrossed_below: Option<f64>,
+    /// What the variant asked and the result falls short of, in a sentence (a shading device
+    /// that lets through more than half the light: [`crate::analysis::SHADING_GOAL`]).
+    pub unmet: Option<String>,
 }
 
 impl Verdict {
@@ -43,11 +46,13 @@ impl Verdict {
         let uncrossed_below = (m.nonconvex_walls > 0)
             .then(|| thickest_uncrossed(h))
             .filter(|&t| t < report.thickness);
+        let unmet = report.shading.as_ref().and_then(|s| s.shortfall());
         if report.honeycomb {
             return Verdict {
                 honeycomb: true,
                 why: None,
                 uncrossed_below,
+                unmet,
             };
         }
         let mut why = format!(
@@ -71,6 +76,7 @@ impl Verdict {
             honeycomb: false,
             why: Some(why),
             uncrossed_below,
+            unmet,
         }
     }
 }
@@ -120,10 +126,11 @@ impl Outcome {
         out.finish(self.placement(), |d| self.write(d))
     }
 
-    /// Where the outputs of this result belong ([`OutputDir::finish`]): a honeycomb's take
-    /// `DIR`'s place, any other go to `DIR.failed` for inspection.
+    /// Where the outputs of this result belong ([`OutputDir::finish`]): a honeycomb that
+    /// meets what its variant asks takes `DIR`'s place, any other goes to `DIR.failed` for
+    /// inspection.
     pub fn placement(&self) -> Placement {
-        if self.verdict.honeycomb {
+        if self.verdict.honeycomb && self.verdict.unmet.is_none() {
             Placement::Passed
         } else {
             Placement::Failed

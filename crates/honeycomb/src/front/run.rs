@@ -1,18 +1,20 @@
 //! The two ways to a honeycomb: from a base mesh, and from a design surface alone.
 
+use super::options::Shading;
 use super::{BaseMesh, Options, Outcome, Progress, Step, Variant, Verdict};
-use crate::analysis::{extruded_along_normals, shading_report};
+use crate::analysis::{extruded_along_normals, shading_report, SHADING_DEPTH};
 use crate::error::{Error, Result};
 use crate::init::{CellSize, InitOptions};
 use crate::mesh::check_base_near_surface;
 use crate::optimize::{
     capped, optimize as solve, paired, OptimizeOptions, Optimized, ParallelOptions, QuadOptions,
 };
-use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Strategy};
-use crate::reciprocal::AcrossOptions;
+use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Strategy, Walls};
+use crate::reciprocal::{AcrossOptions, AxisTargets, SHADING_TILTS};
 use crate::report::Report;
-use crate::structure::{face_measures, measure};
+use crate::structure::{axes_measures, face_measures, measure};
 use crate::surface::Surface;
+use crate::Vec3;
 use std::time::Instant;
 
 /// What the pipeline makes its base mesh with, and how it optimizes it.
@@ -40,20 +42,27 @@ impl PipelineOptions {
     /// The pipeline's strategy for these options, checked.
     fn strategy(&self, progress: &Progress) -> Result<Strategy> {
         self.init.validate()?;
-        let field = match &self.options.variant {
-            Variant::Axes { .. } => Some("axes"),
-            Variant::Shading { .. } => Some("light"),
-            _ => None,
-        };
-        if let Some(field) = field {
+        if let Variant::Axes { .. } = &self.options.variant {
             return Err(Error::option(
-                field,
+                "axes",
                 "given",
                 "prescribes axes per vertex of a base mesh, and the pipeline makes its own \
                  (make it with init, then optimize)",
             ));
         }
+        let shading = self.options.shading()?;
+        if shading.is_some() && self.options.walls != Walls::Across {
+            return Err(Error::option(
+                "walls",
+                self.options.walls.label(),
+                "shading stands its walls across S, turned across the light",
+            ));
+        }
         let mut optimize = self.options.optimize_options()?;
+        // Shading's depth is given to the finished honeycomb (see `shade`).
+        if shading.is_some() {
+            optimize.thickness = None;
+        }
         optimize.solver.cancel = progress.cancel_handle();
         // Quads cap the pipeline's honeycomb afterwards (see `cap_with_quads`), and parallel
         // meshes are paired on its walls (see `pair_on_walls`).
@@ -68,7 +77,10 @@ impl PipelineOptions {
             optimize,
             // The second try only when the fairness is not the caller's choice.
             second_try: self.options.w_fair.is_none(),
-            across: AcrossOptions::default(),
+            across: AcrossOptions {
+                targets: (shading.map(|s| s.targets(SHADING_TILTS[0]))).unwrap_or_default(),
+                ..AcrossOptions::default()
+            },
         })
     }
 }
@@ -101,7 +113,8 @@ pub fn optimize(
     solver_options.solver.cancel = progress.cancel_handle();
     // Quads cap the honeycomb the walls asked give (see `cap_with_quads`).
     let quads = solver_options.quads.take();
-    let (optimized, report) = if solver_options.is_variant() {
+    let shading = options.shading()?;
+    let (optimized, report) = if solver_options.is_variant() && shading.is_none() {
         let optimized = solve(
             base.mesh(),
             surface.design_mesh(),
@@ -112,36 +125,30 @@ pub fn optimize(
         let report = Report::new(&optimized, &measures, 0.0);
         (optimized, report)
     } else {
+        // Shading: walls across S turned across the light, the guided projection with the
+        // axes prescribed across it where those are no clean honeycomb; its depth is given
+        // afterwards (see `shade`).
+        if shading.is_some() {
+            solver_options.thickness = None;
+        }
         let solved = solve_base(
             base.mesh(),
             surface,
             options.walls,
+            (shading.as_ref().map(|s| s.targets(SHADING_TILTS[0]))).unwrap_or_default(),
             &solver_options,
             &mut |step| progress.step(step),
         )?;
         (solved.optimized, solved.report)
     };
-    let (optimized, mut report) = match &quads {
+    let (optimized, report) = match &quads {
         Some(q) => cap_with_quads(optimized, report, surface, q, &solver_options, progress)?,
         None => (optimized, report),
     };
-    if let Variant::Shading {
-        light, sun_path, ..
-    } = &options.variant
-    {
-        let before = extruded_along_normals(
-            base.mesh(),
-            &optimized.connectivity,
-            surface,
-            optimized.honeycomb.thickness,
-        );
-        report.shading = Some(shading_report(
-            &before,
-            &optimized.honeycomb,
-            *light,
-            sun_path,
-        ));
-    }
+    let (optimized, mut report) = match &shading {
+        Some(s) => shade(optimized, report, surface, s, s.targets(SHADING_TILTS[0])),
+        None => (optimized, report),
+    };
     report.seconds = start.elapsed().as_secs_f64();
     Ok(outcome(optimized, report, base.mesh().clone(), None))
 }
@@ -192,6 +199,32 @@ fn cap_with_quads(
     Ok((capped, report))
 }
 
+/// The honeycomb `optimized` (reported in `report`) as a shading device: its walls as deep as
+/// `shading` asks (less where a wall would cross itself), and the light they let through
+/// against the same cells along S's normals in its report.
+fn shade(
+    mut optimized: Optimized,
+    mut report: Report,
+    surface: &Surface,
+    shading: &Shading,
+    targets: AxisTargets,
+) -> (Optimized, Report) {
+    let h = &optimized.honeycomb;
+    let depth = shading
+        .depth
+        .unwrap_or(SHADING_DEPTH * h.base.mean_edge_length());
+    let deep = h.deepened(&optimized.connectivity, depth, h.thickness.min(depth));
+    let before = extruded_along_normals(&deep.base, &optimized.connectivity, surface, depth);
+    let light = shading_report(&before, &deep, depth, shading.light, &shading.sun_path);
+    let axes: Vec<Vec3> = (deep.base.vertices.iter())
+        .map(|&v| targets.at(surface.normal_at(v)))
+        .collect();
+    report.deepened(&deep, &measure(&deep, surface), light);
+    report.axes = Some(axes_measures(&deep, &axes));
+    optimized.honeycomb = deep;
+    (optimized, report)
+}
+
 /// What the pairing solve is called in [`Step::Iteration`].
 const PAIRING_SOLVE: &str = "parallel meshes";
 
@@ -235,6 +268,9 @@ pub fn pipeline(
     let strategy = options.strategy(progress)?;
     // Before any work: a cell count that no solve takes is refused at once.
     crate::limits::check_solve_cells(&options.init, surface.source_mesh())?;
+    if let Some(s) = &options.options.shading()? {
+        return shading_pipeline(surface, strategy, s, progress);
+    }
     let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
     let (mut optimized, mut report) = (made.optimized, made.report);
     // The report's seconds count the work on the finished honeycomb too.
@@ -251,6 +287,71 @@ pub fn pipeline(
     let mut out = outcome(optimized, report, made.base, None);
     out.initialized = Some(made.initialized.report);
     Ok(out)
+}
+
+/// The pipeline's shading device: walls across S turned across the light by at most each of
+/// [`SHADING_TILTS`] in turn, until one blocks enough; else the one that blocks most.
+fn shading_pipeline(
+    surface: &Surface,
+    mut strategy: Strategy,
+    shading: &Shading,
+    progress: &mut Progress,
+) -> Result<Outcome> {
+    let start = Instant::now();
+    // Not a honeycomb last, then by the share let through against the reference's.
+    let rank = |o: &Outcome| {
+        let s = o.report.shading.as_ref().expect("shaded");
+        (
+            !o.verdict.honeycomb,
+            s.light.after / s.light.before.max(f64::MIN_POSITIVE),
+        )
+    };
+    let mut best: Option<(Outcome, f64)> = None;
+    // What each try fell short of.
+    let (mut short, mut spent) = (Vec::new(), 0);
+    for &tilt in &SHADING_TILTS {
+        let targets = shading.targets(tilt);
+        strategy.across.targets = targets;
+        let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
+        let (optimized, report) = shade(made.optimized, made.report, surface, shading, targets);
+        let out = outcome(optimized, report, made.base, Some(made.initialized.report));
+        spent += out.report.iterations_total;
+        let met = out.verdict.unmet.is_none();
+        if let Some(unmet) = &out.verdict.unmet {
+            short.push((tilt, unmet.clone()));
+        }
+        if best
+            .as_ref()
+            .is_none_or(|(b, _)| met || rank(&out) < rank(b))
+        {
+            best = Some((out, tilt));
+        }
+        if met {
+            break;
+        }
+    }
+    let (mut out, kept) = best.expect("a try ran");
+    for (tilt, unmet) in short.iter().filter(|(tilt, _)| *tilt != kept) {
+        let turned = format!(
+            "the axes turned across the light at most {}",
+            degrees(*tilt)
+        );
+        out.report.notes.push(format!("{turned} degrees: {unmet}"));
+    }
+    if !short.is_empty() {
+        out.report.notes.push(format!(
+            "this is the axes turned across the light at most {} degrees",
+            degrees(kept)
+        ));
+    }
+    out.report.iterations_total = spent;
+    out.report.seconds = start.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// Radians in whole degrees.
+fn degrees(angle: f64) -> f64 {
+    angle.to_degrees().round()
 }
 
 /// An outcome judged from its report (whose measures are of the realized meshes).

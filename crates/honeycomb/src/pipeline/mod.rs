@@ -26,7 +26,7 @@ use crate::optimize::{
     optimize, optimize_made_mesh, Attempt, AxesOptions, Frame, OptimizeOptions, Optimized,
     WallNormals, DEFAULT_THICKNESS,
 };
-use crate::reciprocal::{walls_across, Across, AcrossOptions, Stage};
+use crate::reciprocal::{walls_across, Across, AcrossOptions, AxisTargets, Stage};
 use crate::report::Report;
 use crate::solve::IterationInfo;
 use crate::structure::{measure, Measures};
@@ -390,6 +390,7 @@ pub fn solve_base(
     base: &PolyMesh,
     model_surface: &Surface,
     walls: Walls,
+    targets: AxisTargets,
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(Step),
 ) -> Result<Solved> {
@@ -401,6 +402,7 @@ pub fn solve_base(
         let keep_cells = AcrossOptions {
             max_drops: 0,
             max_trimmed_share: 0.0,
+            targets,
             ..AcrossOptions::default()
         };
         match across_or_none(
@@ -714,6 +716,9 @@ fn repair(
     let mut repair = options.clone();
     repair.initial_normals = Some((0..h.edges.len()).map(|e| h.wall_normal(e)).collect());
     repair.weights.fairness = 0.0;
+    // From the fitted walls alone: prescribed axes (the fallback's, for shading) would pull
+    // them elsewhere, and cell points take none.
+    repair.axes = None;
     repair.wall_normals = WallNormals::CellPoints;
     repair.min_edge = options
         .min_edge

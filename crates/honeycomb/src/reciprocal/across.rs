@@ -3,7 +3,9 @@
 //! breaks dropped (the sheet of the rest starts from the same points and is fitted again), and
 //! the cells that stand out beyond S's border trimmed.
 
-use super::{fit_axis_field, place, trim_overhang, AxisFieldOptions, PlacementOptions, Sheet};
+use super::{
+    fit_axis_field, place, trim_overhang, AxisFieldOptions, AxisTargets, PlacementOptions, Sheet,
+};
 use crate::error::Result;
 use crate::geometry::Vec3;
 use crate::mesh::{validate_base_mesh, Connectivity, PolyMesh};
@@ -16,8 +18,9 @@ use crate::surface::Surface;
 pub struct AcrossOptions {
     pub field: AxisFieldOptions,
     pub placement: PlacementOptions,
-    /// Distance between M and M' (model units); `None`: 0.3 mean edge lengths.
+    /// Distance between M and M' (model units); `None`: `default_depth` mean edge lengths.
     pub thickness: Option<f64>,
+    pub default_depth: f64,
     /// Rounds of dropping broken boundary cells at most.
     pub max_drops: usize,
     /// At most this share of the cells is dropped.
@@ -25,6 +28,8 @@ pub struct AcrossOptions {
     /// At most this share of the cells is trimmed where it stands out beyond S's border
     /// ([`trim_overhang`]).
     pub max_trimmed_share: f64,
+    /// What the node axes are fitted to.
+    pub targets: AxisTargets,
 }
 
 impl Default for AcrossOptions {
@@ -33,9 +38,11 @@ impl Default for AcrossOptions {
             field: AxisFieldOptions::default(),
             placement: PlacementOptions::default(),
             thickness: None,
+            default_depth: crate::optimize::DEFAULT_THICKNESS,
             max_drops: 5,
             max_dropped_share: crate::optimize::MAX_DROPPED_SHARE,
             max_trimmed_share: 0.01,
+            targets: AxisTargets::Normals,
         }
     }
 }
@@ -81,7 +88,9 @@ pub fn walls_across(
     let mut mesh = frame.to_normalized(base);
     let mut conn = validate_base_mesh(&mesh)?;
     let mut sheet = Sheet::new(&mesh, &conn)?;
-    let mut points = sheet.initial_points(&mesh, &conn, |p| normalized.normal_at(p));
+    let mut points = sheet.initial_points(&mesh, &conn, |p| {
+        options.targets.at(normalized.normal_at(p))
+    });
     let (mut field_iterations, mut dropped_cells) = (0, 0);
     let mut solves: Option<SolveReport> = None;
     let mut chain = |next: SolveReport| {
@@ -92,11 +101,15 @@ pub fn walls_across(
     };
     let mut drops = 0;
     let mut unconverged_before = false;
+    let placement = PlacementOptions {
+        edges_along_s: options.targets != AxisTargets::Normals,
+        ..options.placement.clone()
+    };
     loop {
         let targets: Vec<Vec3> = mesh
             .vertices
             .iter()
-            .map(|&p| normalized.normal_at(p))
+            .map(|&p| options.targets.at(normalized.normal_at(p)))
             .collect();
         let edges: Vec<Vec3> = conn
             .edges
@@ -128,14 +141,14 @@ pub fn walls_across(
             &sheet,
             &points,
             &normalized,
-            &options.placement,
+            &placement,
             &mut |i| progress(Stage::Placement, i),
         )?;
         chain(placed.solve);
         let vertices = placed.vertices.iter().map(|&p| frame.to_model(p)).collect();
         let thickness = options
             .thickness
-            .unwrap_or(crate::optimize::DEFAULT_THICKNESS * frame.unit);
+            .unwrap_or(options.default_depth * frame.unit);
         let honeycomb = Honeycomb::new(
             PolyMesh::new(vertices, mesh.faces.clone()),
             &conn,

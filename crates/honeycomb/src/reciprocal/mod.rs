@@ -19,10 +19,12 @@ mod across;
 mod axis_field;
 mod placement;
 mod sheet;
+mod targets;
 mod trim;
 
 pub use across::{walls_across, Across, AcrossOptions, Stage};
 pub use axis_field::{fit_axis_field, AxisFieldOptions};
 pub use placement::{place, PlacementOptions};
 pub use sheet::Sheet;
+pub use targets::{AxisTargets, SHADING_TILTS};
 pub use trim::{trim_overhang, ON_S};

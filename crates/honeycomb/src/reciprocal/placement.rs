@@ -31,6 +31,10 @@ pub struct PlacementOptions {
     /// Weight of staying where the base mesh put a vertex: inner vertices, boundary ones.
     pub anchor: f64,
     pub boundary_anchor: f64,
+    /// Each edge's regular direction is where its wall meets S's tangent plane, rather than
+    /// across the node axes: the cell of one size on S where the axes lean far from S's
+    /// normals (across a light), whose cross-section is then drawn out.
+    pub edges_along_s: bool,
     pub cancel: Cancel,
 }
 
@@ -42,6 +46,7 @@ impl Default for PlacementOptions {
             evenness: 3.0,
             anchor: 0.05,
             boundary_anchor: 0.2,
+            edges_along_s: false,
             cancel: Cancel::default(),
         }
     }
@@ -120,7 +125,12 @@ pub fn place(
         .iter()
         .enumerate()
         .map(|(e, &[a, b])| {
-            let along = sheet.wall_normal(points, e).cross(axes[a] + axes[b]);
+            let across = if options.edges_along_s {
+                surface.normal_at((mesh.vertices[a] + mesh.vertices[b]) * 0.5)
+            } else {
+                axes[a] + axes[b]
+            };
+            let along = sheet.wall_normal(points, e).cross(across);
             let d = along.normalized() * mean_edge;
             let start = mesh.vertices[b] - mesh.vertices[a];
             ([a, b], if d.dot(start) < 0.0 { -d } else { d })

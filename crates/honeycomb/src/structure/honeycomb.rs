@@ -1,9 +1,15 @@
 //! The realized honeycomb: base mesh M, second mesh M' (same vertex order and faces, each v'_i
 //! on the node axis of v_i), and one wall quad `v_a v_b v'_b v'_a` per edge.
 
+use super::is_convex;
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
 use serde::{Deserialize, Serialize};
+
+/// [`Honeycomb::deepened`] shortens the ends of a crossing wall by this factor per round, for
+/// at most this many rounds.
+const SHALLOWING: f64 = 0.85;
+const SHALLOWING_ROUNDS: usize = 60;
 
 #[derive(Clone, Debug)]
 pub struct Honeycomb {
@@ -62,6 +68,34 @@ impl Honeycomb {
             axes,
             thickness,
         }
+    }
+
+    /// This honeycomb with its walls `depth` deep along the node axes, less (down to `least`)
+    /// at the ends of a wall whose quad would cross itself where neighbouring axes lean
+    /// together. The walls stay planar whatever the depths: each contains its two axes.
+    pub fn deepened(&self, conn: &Connectivity, depth: f64, least: f64) -> Honeycomb {
+        let m = &self.base.vertices;
+        let mut depths = vec![depth; m.len()];
+        let quad = |d: &[f64], [a, b]: [usize; 2]| {
+            let (ta, tb) = (m[a] + self.axes[a] * d[a], m[b] + self.axes[b] * d[b]);
+            [m[a], m[b], tb, ta]
+        };
+        for _ in 0..SHALLOWING_ROUNDS {
+            let crossed: Vec<[usize; 2]> = (self.edges.iter())
+                .filter(|&&e| !is_convex(quad(&depths, e)))
+                .copied()
+                .collect();
+            if crossed.is_empty() {
+                break;
+            }
+            for v in crossed.into_iter().flatten() {
+                depths[v] = (depths[v] * SHALLOWING).max(least);
+            }
+        }
+        let offset = (m.iter().zip(&self.axes).zip(&depths))
+            .map(|((&v, &a), &d)| v + a * d)
+            .collect();
+        Honeycomb::with_offset(self.base.clone(), conn, offset)
     }
 
     /// Distance `|v'_i - v_i|` per vertex.

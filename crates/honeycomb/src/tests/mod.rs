@@ -6,6 +6,7 @@ mod init;
 mod optimize;
 mod parallel;
 mod quads;
+mod shading;
 mod variants;
 
 use crate::optimize::{OptimizeOptions, Weights};

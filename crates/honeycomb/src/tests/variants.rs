@@ -165,7 +165,8 @@ fn shade(subject: (PolyMesh, PolyMesh), what: &str) -> AxesMeasures {
     let a = axes_measures(&opt.honeycomb, &targets);
     let before = extruded_along_normals(&base, &opt.connectivity, &s, opt.honeycomb.thickness);
     let noon = Vec3::new(0.0, 0.0, -1.0);
-    let report = shading_report(&before, &opt.honeycomb, light, &[noon]);
+    let depth = opt.honeycomb.thickness;
+    let report = shading_report(&before, &opt.honeycomb, depth, light, &[noon]);
     println!(
         "shading {what} |V|={} it={} omega {:.2e}/{:.2e} delta {:.2e}/{:.2e} axes {:.2}/{:.2} deg min edge {:.3} light {:.3} -> {:.3}, noon {:.3} -> {:.3}, {seconds:.2}s",
         base.vertices.len(), opt.solve.iterations, m.omega_max_deg, m.omega_avg_deg, m.delta_max,

@@ -1,0 +1,157 @@
+//! Shading (paper section 4, Fig. 18) from a design surface in one call: walls across S turned
+//! across the light, measured on the written meshes against the same cells along S's normals.
+
+use crate::analysis::{extruded_along_normals, light_share, SHADING_DEPTH};
+use crate::generate::{design_surface, Shape};
+use crate::mesh::validate_base_mesh;
+use crate::structure::{measure, Honeycomb};
+use crate::surface::Surface;
+use crate::{pipeline, Outcome, PipelineOptions, Progress, Variant, Vec3, Walls};
+
+/// The direction the light of a sun `elevation` degrees high, from `azimuth` degrees, travels
+/// in.
+fn sun(elevation: f64, azimuth: f64) -> Vec3 {
+    let (e, a) = (elevation.to_radians(), azimuth.to_radians());
+    -Vec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
+}
+
+fn shaded(surface: &Surface, cells: usize, light: Vec3, sun_path: Vec<Vec3>) -> Outcome {
+    let mut options = PipelineOptions::new(cells);
+    options.options.variant = Variant::Shading {
+        light,
+        sun_path,
+        w_axes: None,
+    };
+    pipeline(surface, &options, &mut Progress::silent()).unwrap()
+}
+
+/// The light share through `h` along `light`, and through its own cells extruded along S's
+/// normals to `depth`: from the meshes, not from the report.
+fn shares(h: &Honeycomb, surface: &Surface, light: Vec3, depth: f64) -> (f64, f64) {
+    let conn = validate_base_mesh(&h.base).unwrap();
+    let before = extruded_along_normals(&h.base, &conn, surface, depth);
+    (
+        light_share(&before, light, 256).share,
+        light_share(h, light, 256).share,
+    )
+}
+
+/// On each generated surface, suns 30 to 60 degrees high from three azimuths: a honeycomb
+/// whose walls let through at most half the light its cells would along S's normals, at the
+/// default depth, every wall planar and none crossed, M on S.
+#[test]
+fn pipeline_shades_generated_surfaces() {
+    let lights = [sun(30.0, 20.0), sun(45.0, 200.0), sun(60.0, 110.0)];
+    for shape in [Shape::Dome, Shape::Saddle, Shape::Wave, Shape::Cylinder] {
+        let surface = Surface::new(design_surface(shape)).unwrap();
+        for light in lights {
+            let out = shaded(&surface, 750, light, Vec::new());
+            let h = &out.honeycomb;
+            let m = measure(h, &surface);
+            let unit = m.mean_edge_length;
+            let (before, after) = shares(h, &surface, light, SHADING_DEPTH * unit);
+            let depths: Vec<f64> = h.depths().collect();
+            let deepest = depths.iter().copied().fold(0.0, f64::max);
+            println!(
+                "{shape:?} light {light:?}: share {before:.3} -> {after:.3}, omega {:.1e}, \
+                 delta {:.1e}, closeness {:.3}, axes {:.1} deg from S's normals, depth up to \
+                 {:.2}, {} iterations",
+                m.omega_max_deg,
+                m.delta_max,
+                m.closeness_max,
+                m.axis_normal_deg.mean,
+                deepest / unit,
+                out.report.iterations_total
+            );
+            assert!(
+                out.is_honeycomb() && out.verdict.unmet.is_none(),
+                "{shape:?}"
+            );
+            assert_eq!(out.report.walls, Walls::Across);
+            assert!(m.omega_max_deg < 0.05 && m.delta_max < 1e-5, "{m:?}");
+            assert_eq!(m.nonconvex_walls, 0, "{shape:?}");
+            assert!(m.closeness_max <= 0.05, "{shape:?}: {}", m.closeness_max);
+            assert!(
+                after <= 0.5 * before || after < 0.005,
+                "{shape:?} {light:?}: {before} -> {after}"
+            );
+            assert!((deepest / unit - SHADING_DEPTH).abs() < 0.05, "{deepest}");
+            let reported = out.report.shading.as_ref().unwrap();
+            assert!((reported.light.after - after).abs() < 1e-9);
+        }
+    }
+}
+
+/// With a day's sun path the axes turn across the whole day: its mean share is halved too,
+/// and more than across the noon light alone does.
+#[test]
+fn a_sun_path_halves_the_days_mean_share() {
+    let surface = Surface::new(design_surface(Shape::Dome)).unwrap();
+    let path: Vec<Vec3> = [-60.0, -30.0, 0.0, 30.0, 60.0]
+        .map(|hour_angle: f64| {
+            sun(
+                35.0 + 20.0 * (hour_angle.to_radians()).cos(),
+                90.0 + hour_angle,
+            )
+        })
+        .to_vec();
+    let noon = path[2];
+    let mean = |out: &Outcome| {
+        let depth = out.report.shading.as_ref().unwrap().depth;
+        let (before, after): (Vec<f64>, Vec<f64>) = path
+            .iter()
+            .map(|&l| shares(&out.honeycomb, &surface, l, depth))
+            .unzip();
+        let n = path.len() as f64;
+        (
+            before.iter().sum::<f64>() / n,
+            after.iter().sum::<f64>() / n,
+        )
+    };
+    let day = shaded(&surface, 750, noon, path.clone());
+    let (before, after) = mean(&day);
+    println!("sun path: mean share {before:.3} -> {after:.3}");
+    assert!(day.is_honeycomb() && day.verdict.unmet.is_none());
+    assert!(after <= 0.5 * before, "{before} -> {after}");
+    let reported = day.report.shading.as_ref().unwrap();
+    let reported_mean = reported.sun_path_mean.as_ref().unwrap();
+    assert!((reported_mean.after - after).abs() < 1e-9);
+    assert_eq!(reported.sun_path.len(), path.len());
+}
+
+/// Walls made deeper stay planar and uncrossed where neighbouring axes lean together: only
+/// the ends of a wall that would cross are kept shallower.
+#[test]
+fn deepened_walls_stay_planar_and_uncrossed() {
+    let surface = Surface::new(design_surface(Shape::Dome)).unwrap();
+    let out = pipeline(
+        &surface,
+        &PipelineOptions::new(300),
+        &mut Progress::silent(),
+    )
+    .unwrap();
+    let h = &out.honeycomb;
+    let conn = validate_base_mesh(&h.base).unwrap();
+    let unit = h.base.mean_edge_length();
+    // So deep that the axes, which lean together over the dome, cross many walls.
+    let asked = 8.0 * unit;
+    let straight = Honeycomb::new(h.base.clone(), &conn, h.axes.clone(), asked);
+    assert!(measure(&straight, &surface).nonconvex_walls > 0);
+    let deep = h.deepened(&conn, asked, h.thickness);
+    let m = measure(&deep, &surface);
+    assert_eq!(m.nonconvex_walls, 0);
+    assert!(m.delta_max < 1e-9, "walls planar: {}", m.delta_max);
+    let depths: Vec<f64> = deep.depths().collect();
+    assert!(depths
+        .iter()
+        .all(|&d| d >= h.thickness * (1.0 - 1e-12) && d <= asked * (1.0 + 1e-12)));
+    let full = depths
+        .iter()
+        .filter(|&&d| (d - asked).abs() < 1e-9 * asked)
+        .count();
+    assert!(
+        full > 0 && full < depths.len(),
+        "{full} of {}",
+        depths.len()
+    );
+}
