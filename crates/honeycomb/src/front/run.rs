@@ -77,10 +77,8 @@ impl PipelineOptions {
             optimize,
             // The second try only when the fairness is not the caller's choice.
             second_try: self.options.w_fair.is_none(),
-            across: AcrossOptions {
-                targets: (shading.map(|s| s.targets(SHADING_TILTS[0]))).unwrap_or_default(),
-                ..AcrossOptions::default()
-            },
+            // Shading sets the axes' targets per try (see `shading_pipeline`).
+            across: AcrossOptions::default(),
         })
     }
 }
@@ -332,11 +330,10 @@ fn shading_pipeline(
     }
     let (mut out, kept) = best.expect("a try ran");
     for (tilt, unmet) in short.iter().filter(|(tilt, _)| *tilt != kept) {
-        let turned = format!(
-            "the axes turned across the light at most {}",
+        out.report.notes.push(format!(
+            "the axes turned across the light at most {} degrees: {unmet}",
             degrees(*tilt)
-        );
-        out.report.notes.push(format!("{turned} degrees: {unmet}"));
+        ));
     }
     if !short.is_empty() {
         out.report.notes.push(format!(
