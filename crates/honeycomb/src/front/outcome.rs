@@ -88,13 +88,15 @@ impl Outcome {
 
     /// Writes the structure files into the directory `dir` (created if needed):
     /// structure.json, base.obj, offset.obj, walls.obj, report.json, quads.obj with quads,
-    /// and a pipeline's initial.obj and init.json.
+    /// a pipeline's init.json, and initial.obj from a pipeline or a solve that dropped
+    /// boundary cells.
     pub fn write(&self, dir: &Path) -> Result<()> {
         let mut extra: Vec<(&str, &PolyMesh)> = Vec::new();
         if let Some(q) = &self.quads {
             extra.push(("quads.obj", q));
         }
-        if self.initialized.is_some() {
+        let dropped = self.report.dropped_boundary_cells.is_some_and(|d| d > 0);
+        if self.initialized.is_some() || dropped {
             // The mesh the kept solve started from, so that `optimize` repeats it.
             extra.push(("initial.obj", &self.base));
         }

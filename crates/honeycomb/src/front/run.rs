@@ -112,7 +112,36 @@ pub fn optimize(
     // Quads cap the honeycomb the walls asked give (see `cap_with_quads`).
     let quads = solver_options.quads.take();
     let shading = options.shading()?;
-    let (optimized, report) = if solver_options.is_variant() && shading.is_none() {
+    if let Some(shading) = &shading {
+        // Walls across S turned across the light, the guided projection with the axes
+        // prescribed across it where those are no clean honeycomb; its depth is given
+        // afterwards (see `shade`).
+        solver_options.thickness = None;
+        return shading_tries(shading, progress, |targets, progress| {
+            let solved = solve_base(
+                base.mesh(),
+                surface,
+                options.walls,
+                targets,
+                &solver_options,
+                &mut |step| progress.step(step),
+            )?;
+            let (optimized, report) = match &quads {
+                Some(q) => cap_with_quads(
+                    solved.optimized,
+                    solved.report,
+                    surface,
+                    q,
+                    &solver_options,
+                    progress,
+                )?,
+                None => (solved.optimized, solved.report),
+            };
+            let (optimized, report) = shade(optimized, report, surface, shading, targets);
+            Ok(outcome(optimized, report, solved.base, None))
+        });
+    }
+    let (optimized, report) = if solver_options.is_variant() {
         let optimized = solve(
             base.mesh(),
             surface.design_mesh(),
@@ -123,28 +152,18 @@ pub fn optimize(
         let report = Report::new(&optimized, &measures, 0.0);
         (optimized, report)
     } else {
-        // Shading: walls across S turned across the light, the guided projection with the
-        // axes prescribed across it where those are no clean honeycomb; its depth is given
-        // afterwards (see `shade`).
-        if shading.is_some() {
-            solver_options.thickness = None;
-        }
         let solved = solve_base(
             base.mesh(),
             surface,
             options.walls,
-            (shading.as_ref().map(|s| s.targets(SHADING_TILTS[0]))).unwrap_or_default(),
+            AxisTargets::Normals,
             &solver_options,
             &mut |step| progress.step(step),
         )?;
         (solved.optimized, solved.report)
     };
-    let (optimized, report) = match &quads {
+    let (optimized, mut report) = match &quads {
         Some(q) => cap_with_quads(optimized, report, surface, q, &solver_options, progress)?,
-        None => (optimized, report),
-    };
-    let (optimized, mut report) = match &shading {
-        Some(s) => shade(optimized, report, surface, s, s.targets(SHADING_TILTS[0])),
         None => (optimized, report),
     };
     report.seconds = start.elapsed().as_secs_f64();
@@ -287,13 +306,33 @@ pub fn pipeline(
     Ok(out)
 }
 
-/// The pipeline's shading device: walls across S turned across the light by at most each of
-/// [`SHADING_TILTS`] in turn, until one blocks enough; else the one that blocks most.
+/// The pipeline's shading device (see [`shading_tries`]), each try from a base mesh of its own.
 fn shading_pipeline(
     surface: &Surface,
     mut strategy: Strategy,
     shading: &Shading,
     progress: &mut Progress,
+) -> Result<Outcome> {
+    shading_tries(shading, progress, |targets, progress| {
+        strategy.across.targets = targets;
+        let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
+        let (optimized, report) = shade(made.optimized, made.report, surface, shading, targets);
+        Ok(outcome(
+            optimized,
+            report,
+            made.base,
+            Some(made.initialized.report),
+        ))
+    })
+}
+
+/// A shading device: walls across S turned across the light by at most each of
+/// [`SHADING_TILTS`] in turn (`shaded` makes one for the targets given), until one blocks
+/// enough; else the one that blocks most. Notes say what the other tries fell short of.
+fn shading_tries(
+    shading: &Shading,
+    progress: &mut Progress,
+    mut shaded: impl FnMut(AxisTargets, &mut Progress) -> Result<Outcome>,
 ) -> Result<Outcome> {
     let start = Instant::now();
     // Not a honeycomb last, then by the share let through against the reference's.
@@ -308,15 +347,13 @@ fn shading_pipeline(
     // What each try fell short of.
     let (mut short, mut spent) = (Vec::new(), 0);
     for &tilt in &SHADING_TILTS {
-        let targets = shading.targets(tilt);
-        strategy.across.targets = targets;
-        let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
-        let (optimized, report) = shade(made.optimized, made.report, surface, shading, targets);
-        let out = outcome(optimized, report, made.base, Some(made.initialized.report));
+        let out = shaded(shading.targets(tilt), progress)?;
         spent += out.report.iterations_total;
-        let met = out.verdict.unmet.is_none();
+        let met = out.verdict.honeycomb && out.verdict.unmet.is_none();
         if let Some(unmet) = &out.verdict.unmet {
             short.push((tilt, unmet.clone()));
+        } else if let Some(why) = &out.verdict.why {
+            short.push((tilt, why.clone()));
         }
         if best
             .as_ref()

@@ -399,11 +399,18 @@ pub fn solve_base(
     let surface = model_surface.design_mesh();
     let mut not_clean = None;
     if walls == Walls::Across {
+        // A designer's mesh keeps its cells; turned across a light, the axes cross the walls
+        // of a few boundary cells, which are dropped rather than the device given up.
+        let defaults = AcrossOptions::default();
         let keep_cells = AcrossOptions {
-            max_drops: 0,
+            max_drops: if targets == AxisTargets::Normals {
+                0
+            } else {
+                defaults.max_drops
+            },
             max_trimmed_share: 0.0,
             targets,
-            ..AcrossOptions::default()
+            ..defaults
         };
         match across_or_none(
             base,

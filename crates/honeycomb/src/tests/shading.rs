@@ -155,3 +155,71 @@ fn deepened_walls_stay_planar_and_uncrossed() {
         depths.len()
     );
 }
+
+/// `optimize` with a light on a designer's mesh (the pipeline's default base mesh): the same
+/// walls turned across the light, a honeycomb that halves the light, and at most a few
+/// boundary cells given up.
+#[test]
+fn optimize_shades_a_designers_mesh() {
+    let mut dropped_somewhere = false;
+    for (shape, light) in [
+        (Shape::Dome, sun(40.0, 60.0)),
+        (Shape::Saddle, sun(55.0, 300.0)),
+        (Shape::Wave, sun(30.0, 160.0)),
+    ] {
+        let surface = Surface::new(design_surface(shape)).unwrap();
+        let made = pipeline(
+            &surface,
+            &PipelineOptions::new(500),
+            &mut Progress::silent(),
+        )
+        .unwrap();
+        let base = crate::BaseMesh::from_mesh(made.base.clone()).unwrap();
+        let options = crate::Options {
+            variant: Variant::Shading {
+                light,
+                sun_path: Vec::new(),
+                w_axes: None,
+            },
+            ..crate::Options::default()
+        };
+        let out = crate::optimize(&base, &surface, &options, &mut Progress::silent()).unwrap();
+        let h = &out.honeycomb;
+        let m = measure(h, &surface);
+        let depth = out.report.shading.as_ref().unwrap().depth;
+        let (before, after) = shares(h, &surface, light, depth);
+        let (given, kept) = (made.base.faces.len(), h.base.faces.len());
+        println!(
+            "{shape:?}: share {before:.3} -> {after:.3}, omega {:.1e}, delta {:.1e}, {kept} of \
+             {given} cells, {} iterations",
+            m.omega_max_deg, m.delta_max, out.report.iterations_total
+        );
+        assert!(
+            out.is_honeycomb() && out.verdict.unmet.is_none(),
+            "{shape:?}"
+        );
+        assert!(m.omega_max_deg < 0.05 && m.delta_max < 1e-5, "{m:?}");
+        assert_eq!(m.nonconvex_walls, 0, "{shape:?}");
+        assert!(after <= 0.5 * before, "{shape:?}: {before} -> {after}");
+        assert!(kept as f64 >= 0.97 * given as f64, "{kept} of {given}");
+        assert_eq!(out.base.faces.len(), kept);
+        if kept < given {
+            // The mesh the result keeps is written beside it, as `initial.obj`.
+            dropped_somewhere = true;
+            let dir = std::env::temp_dir().join(format!(
+                "honeycomb-shading-{shape:?}-{}",
+                std::process::id()
+            ));
+            out.save(&dir).unwrap();
+            let initial = crate::mesh::read_mesh(&dir.join("initial.obj"))
+                .unwrap()
+                .mesh;
+            assert_eq!(initial.faces.len(), kept);
+            std::fs::remove_dir_all(&dir).unwrap();
+        }
+    }
+    assert!(
+        dropped_somewhere,
+        "no case gave up a boundary cell: the test lost its point"
+    );
+}
