@@ -117,11 +117,18 @@ pub fn optimize(
         // prescribed across it where those are no clean honeycomb; its depth is given
         // afterwards (see `shade`).
         solver_options.thickness = None;
-        return shading_tries(shading, progress, |targets, progress| {
+        let tries = SHADING_TILTS.map(ShadingTry::Turned);
+        let tries = [&tries[..], &[ShadingTry::Prescribed]].concat();
+        return shading_tries(&tries, progress, |shading_try, progress| {
+            let (walls, targets) = match shading_try {
+                ShadingTry::Turned(tilt) => (options.walls, shading.targets(tilt)),
+                // `solver_options` prescribe the axes across the light.
+                ShadingTry::Prescribed => (Walls::Free, shading.targets(SHADING_TILTS[0])),
+            };
             let solved = solve_base(
                 base.mesh(),
                 surface,
-                options.walls,
+                walls,
                 targets,
                 &solver_options,
                 &mut |step| progress.step(step),
@@ -313,7 +320,12 @@ fn shading_pipeline(
     shading: &Shading,
     progress: &mut Progress,
 ) -> Result<Outcome> {
-    shading_tries(shading, progress, |targets, progress| {
+    let tries = SHADING_TILTS.map(ShadingTry::Turned);
+    shading_tries(&tries, progress, |shading_try, progress| {
+        let ShadingTry::Turned(tilt) = shading_try else {
+            unreachable!("the pipeline turns its walls across S")
+        };
+        let targets = shading.targets(tilt);
         strategy.across.targets = targets;
         let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
         let (optimized, report) = shade(made.optimized, made.report, surface, shading, targets);
@@ -326,13 +338,40 @@ fn shading_pipeline(
     })
 }
 
-/// A shading device: walls across S turned across the light by at most each of
-/// [`SHADING_TILTS`] in turn (`shaded` makes one for the targets given), until one blocks
-/// enough; else the one that blocks most. Notes say what the other tries fell short of.
+/// One way to a shading device.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum ShadingTry {
+    /// Walls across S turned across the light by at most this angle (radians).
+    Turned(f64),
+    /// The guided projection with the axes prescribed across the light.
+    Prescribed,
+}
+
+impl std::fmt::Display for ShadingTry {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            ShadingTry::Turned(tilt) => write!(
+                f,
+                "the axes turned across the light at most {} degrees",
+                degrees(*tilt)
+            ),
+            ShadingTry::Prescribed => {
+                write!(
+                    f,
+                    "the guided projection with the axes prescribed across the light"
+                )
+            }
+        }
+    }
+}
+
+/// A shading device: each of `tries` in turn (`shaded` makes one), until one is a honeycomb
+/// that blocks enough; else the one that blocks most. Notes say what the other tries fell
+/// short of.
 fn shading_tries(
-    shading: &Shading,
+    tries: &[ShadingTry],
     progress: &mut Progress,
-    mut shaded: impl FnMut(AxisTargets, &mut Progress) -> Result<Outcome>,
+    mut shaded: impl FnMut(ShadingTry, &mut Progress) -> Result<Outcome>,
 ) -> Result<Outcome> {
     let start = Instant::now();
     // Not a honeycomb last, then by the share let through against the reference's.
@@ -343,40 +382,34 @@ fn shading_tries(
             s.light.after / s.light.before.max(f64::MIN_POSITIVE),
         )
     };
-    let mut best: Option<(Outcome, f64)> = None;
+    let mut best: Option<(Outcome, ShadingTry)> = None;
     // What each try fell short of.
     let (mut short, mut spent) = (Vec::new(), 0);
-    for &tilt in &SHADING_TILTS {
-        let out = shaded(shading.targets(tilt), progress)?;
+    for &this in tries {
+        let out = shaded(this, progress)?;
         spent += out.report.iterations_total;
         let met = out.verdict.honeycomb && out.verdict.unmet.is_none();
         if let Some(unmet) = &out.verdict.unmet {
-            short.push((tilt, unmet.clone()));
+            short.push((this, unmet.clone()));
         } else if let Some(why) = &out.verdict.why {
-            short.push((tilt, why.clone()));
+            short.push((this, why.clone()));
         }
         if best
             .as_ref()
             .is_none_or(|(b, _)| met || rank(&out) < rank(b))
         {
-            best = Some((out, tilt));
+            best = Some((out, this));
         }
         if met {
             break;
         }
     }
     let (mut out, kept) = best.expect("a try ran");
-    for (tilt, unmet) in short.iter().filter(|(tilt, _)| *tilt != kept) {
-        out.report.notes.push(format!(
-            "the axes turned across the light at most {} degrees: {unmet}",
-            degrees(*tilt)
-        ));
+    for (other, unmet) in short.iter().filter(|(other, _)| *other != kept) {
+        out.report.notes.push(format!("{other}: {unmet}"));
     }
     if !short.is_empty() {
-        out.report.notes.push(format!(
-            "this is the axes turned across the light at most {} degrees",
-            degrees(kept)
-        ));
+        out.report.notes.push(format!("this is {kept}"));
     }
     out.report.iterations_total = spent;
     out.report.seconds = start.elapsed().as_secs_f64();
