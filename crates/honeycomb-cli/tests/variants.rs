@@ -156,10 +156,16 @@ fn shading_reports_the_light_before_and_after_per_direction() {
     );
     assert_eq!(shading["sun_path"].as_array().unwrap().len(), 2);
     assert_eq!(shading["met"], true);
-    // This mesh's walls across S turned across the light cross two walls; the guided
-    // projection with the axes prescribed across the light is the honeycomb kept.
+    // On this mesh the walls turned across the light block too little over the sun path; the
+    // guided projection with the axes prescribed across it is kept, made exact.
     assert_eq!(report["honeycomb"], true);
     assert!(number(&report, "omega_max_deg") < 0.05);
+    assert!(number(&report, "delta_max") < 1e-5);
+    let notes = report["notes"].to_string();
+    assert!(
+        notes.contains("prescribed across the light") && notes.contains("made it exact"),
+        "{notes}"
+    );
 
     let thin = tmp.join("thin");
     let output = run_demo(&thin, &[&light[..], &["--thickness", "0.05"]].concat());

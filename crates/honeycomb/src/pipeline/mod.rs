@@ -453,6 +453,30 @@ pub fn solve_base(
         progress(Step::Iteration("guided projection", 1, info))
     })?;
     let measures = measure(&optimized.honeycomb, model_surface);
+    let guided_iterations = iterations;
+    let (optimized, measures, made_exact) = if walls == Walls::Across || walls == Walls::Free {
+        exact(
+            optimized,
+            measures,
+            surface_mesh,
+            model_surface,
+            &prescribed,
+            &mut |info| {
+                iterations += 1;
+                progress(Step::Iteration("making it exact", 1, info))
+            },
+        )?
+    } else {
+        (optimized, measures, false)
+    };
+    let mut notes = Vec::new();
+    if made_exact {
+        notes.push(format!(
+            "the prescribed axes held the nodes and walls off exact; {} iterations without \
+             them made it exact",
+            iterations - guided_iterations
+        ));
+    }
     let mut report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
     report.walls = if walls == Walls::Across {
         Walls::Free
@@ -465,7 +489,7 @@ pub fn solve_base(
         optimized,
         measures,
         report,
-        notes: Vec::new(),
+        notes,
     };
     let mut solved = match not_clean {
         Some(not_clean) => not_clean.or_better(solved),
@@ -709,9 +733,7 @@ const REPAIR_MIN_EDGE: f64 = 0.3;
 
 /// Walls across S that are no clean honeycomb (a node turned over, a wall crossed, a vertex
 /// off S, an edge shorter than `--min-edge`) solved again by the guided projection from where
-/// they stand: the placed vertices and the fitted walls, without the opposite-wall fairness
-/// (which would flatten the fitted axes) and with every edge kept from collapsing (or as long
-/// as asked). `None` when that is no clean honeycomb either.
+/// they stand ([`resolved`]). `None` when that is no clean honeycomb either.
 fn repair(
     across: &Across,
     surface: &PolyMesh,
@@ -719,19 +741,33 @@ fn repair(
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Option<(Optimized, Measures, Option<String>)>> {
-    let h = &across.honeycomb;
-    let mut repair = options.clone();
-    repair.initial_normals = Some((0..h.edges.len()).map(|e| h.wall_normal(e)).collect());
-    repair.weights.fairness = 0.0;
-    // From the fitted walls alone: prescribed axes (the fallback's, for shading) would pull
+    let solved = resolved(&across.honeycomb, surface, model_surface, options, progress)?;
+    Ok(solved.filter(|(_, measures, _)| is_clean(measures, options.min_edge)))
+}
+
+/// The honeycomb `h` solved again by at most [`REPAIR_ITERATIONS`] of the guided projection
+/// from where it stands: its vertices and walls, without the opposite-wall fairness (which
+/// would flatten its axes) and without prescribed axes, every edge kept from collapsing (or
+/// as long as asked). `None` when the solve breaks down.
+fn resolved(
+    h: &crate::structure::Honeycomb,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    options: &OptimizeOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Option<(Optimized, Measures, Option<String>)>> {
+    let mut again = options.clone();
+    again.initial_normals = Some((0..h.edges.len()).map(|e| h.wall_normal(e)).collect());
+    again.weights.fairness = 0.0;
+    // From the walls as they stand: prescribed axes (the fallback's, for shading) would pull
     // them elsewhere, and cell points take none.
-    repair.axes = None;
-    repair.wall_normals = WallNormals::CellPoints;
-    repair.min_edge = options
+    again.axes = None;
+    again.wall_normals = WallNormals::CellPoints;
+    again.min_edge = options
         .min_edge
         .or(Some(REPAIR_MIN_EDGE * h.base.mean_edge_length()));
-    repair.solver.max_iterations = REPAIR_ITERATIONS;
-    let mut optimized = match optimize(&h.base, Some(surface), &repair, progress) {
+    again.solver.max_iterations = REPAIR_ITERATIONS;
+    let mut optimized = match optimize(&h.base, Some(surface), &again, progress) {
         Ok(optimized) => optimized,
         Err(Error::Solver(_)) => return Ok(None),
         Err(e) => return Err(e),
@@ -739,7 +775,48 @@ fn repair(
     let mut measures = measure(&optimized.honeycomb, model_surface);
     let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
     let thinner = uncross(h, conn, &mut measures, model_surface, options.thickness);
-    Ok(is_clean(&measures, options.min_edge).then_some((optimized, measures, thinner)))
+    Ok(Some((optimized, measures, thinner)))
+}
+
+/// The guided projection with prescribed axes (shading's) made exact: the soft axes hold
+/// the node and wall conditions off by about their weight, so a result short of the
+/// variants' tolerances is solved again without them ([`resolved`]), the axes moving a
+/// little. The result as it was unless that is exact, uncrossed where it was, and on S;
+/// `true` when it was made exact.
+fn exact(
+    optimized: Optimized,
+    measures: Measures,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    options: &OptimizeOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<(Optimized, Measures, bool)> {
+    if options.axes.is_none() || is_exact(&measures) {
+        return Ok((optimized, measures, false));
+    }
+    let again = resolved(
+        &optimized.honeycomb,
+        surface,
+        model_surface,
+        options,
+        progress,
+    )?;
+    Ok(match again {
+        Some((o, m, _))
+            if is_exact(&m)
+                && m.nonconvex_walls <= measures.nonconvex_walls
+                && m.closeness_max <= ACROSS_CLOSENESS.max(measures.closeness_max) =>
+        {
+            (o, m, true)
+        }
+        _ => (optimized, measures, false),
+    })
+}
+
+/// Within what the paper's variants ask of a honeycomb: omega below 0.05 degrees, delta
+/// below 1e-5.
+fn is_exact(m: &Measures) -> bool {
+    m.omega_max_deg < 0.05 && m.delta_max < 1e-5
 }
 
 /// The plan-view base mesh of uniform walls: S seen along its mean normal or the direction
