@@ -68,6 +68,10 @@ function buildMesh(m) {
   app.mesh = m;
   app.meshes += 1;
   $('source').textContent = m.source;
+  $('variant-row').hidden = !m.variant;
+  $('variant-name').textContent = m.variant ? m.variant.name : 'variant';
+  $('variant').textContent = '-';
+  $('variant-unit').textContent = m.variant ? variantUnit[m.variant.name.split(' ')[0]] : '';
   $('thickness_now').textContent = m.thickness.toPrecision(3);
   $('remake').hidden = m.remake.cells === null && !m.remake.thickness;
   $('cells-row').hidden = m.remake.cells === null;
@@ -114,11 +118,28 @@ function buildMesh(m) {
   const tips = points(0x2a7a2a, 5);
   const picked = points(0xff2020, 10);
   picked.geometry.setDrawRange(0, 0);
-  objects = { surfaceMesh, wallMesh, base, offset, axes, handles, tips, picked };
+  // Quads: the diagonal that splits each cell, from a quad's last corner to its first.
+  const quads = (m.variant && m.variant.quads) || [];
+  const diagonals = lines(quads.length, 0x9a2a8a);
+  objects = { surfaceMesh, wallMesh, base, offset, axes, handles, tips, picked, diagonals };
   for (const o of Object.values(objects)) scene.add(o);
   objects.framed = false;
   sphereImage.build(m.faces, nv);
   redraw();
+}
+
+// The unit of each variant's row, by the first word of its name, until its first measure.
+const variantUnit = { quads: 'delta_face max / avg', parallel: 'deg, beta max / avg', shading: 'light share' };
+
+// What an edit left of the variant: the row's value and its unit, which says what it is.
+function variantCells(w, f) {
+  if (w.variant === 'quads') {
+    return [`${f(w.delta_face_max)} / ${f(w.delta_face_avg)}`, `delta_face max / avg, ${w.quads} quads`];
+  }
+  if (w.variant === 'parallel') return [`${f(w.beta_max_deg)} / ${f(w.beta_avg_deg)}`, variantUnit.parallel];
+  const share = (c) => `${c.before.toFixed(3)} -> ${c.after.toFixed(3)}`;
+  const path = w.sun_path_mean ? `; the day's mean ${share(w.sun_path_mean)}` : '';
+  return [share(w.light), `light share, along S's normals -> these walls (half asked)${path}`];
 }
 
 function applyState(s) {
@@ -155,6 +176,14 @@ function applyState(s) {
     axisPos.array.set([B[3 * v], B[3 * v + 1], B[3 * v + 2], O[3 * v], O[3 * v + 1], O[3 * v + 2]], 6 * v);
   }
   axisPos.needsUpdate = true;
+  const quads = (m.variant && m.variant.quads) || [];
+  const diagonalPos = objects.diagonals.geometry.attributes.position;
+  quads.forEach((q, k) => {
+    const [a, d] = [q[3], q[0]];
+    diagonalPos.array.set([B[3 * a], B[3 * a + 1], B[3 * a + 2], B[3 * d], B[3 * d + 1], B[3 * d + 2]], 6 * k);
+  });
+  diagonalPos.needsUpdate = true;
+  if (quads.length) objects.diagonals.geometry.computeBoundingSphere();
   set(objects.handles.geometry.attributes.position, B);
   set(objects.tips.geometry.attributes.position, O);
   for (const o of ['base', 'offset', 'axes', 'handles', 'tips']) objects[o].geometry.computeBoundingSphere();
@@ -177,6 +206,8 @@ function applyState(s) {
   $('edge_length').textContent = ms.mean_edge_length.toPrecision(3);
   $('step_ms').textContent = s.step_ms.toFixed(1);
   $('edit_ms').textContent = s.edit_ms.toFixed(1);
+  // A variant is measured once an edit's solve has ended; in between the last figure stays.
+  if (s.variant) [$('variant').textContent, $('variant-unit').textContent] = variantCells(s.variant, f);
   setStatus(s.done ? 'ready' : 'solving...');
   // Each page undoes only its own gestures: a new page has none, whatever the others did.
   $('undo').disabled = s.undo_page === null || s.undo_page !== app.page;

@@ -57,8 +57,9 @@ try {
       legendTicks: text('#legend-ticks span'),
       help: text('#modes .help'),
       modes: text('#modes label b'),
-      // Each measure row's name, value and unit (the counts and the status have none).
-      rows: Array.from(document.querySelectorAll('#measures tr'), (tr) => Array.from(tr.cells, (c) => c.textContent.trim())),
+      // Each shown measure row's name, value and unit (the counts and the status have none).
+      rows: Array.from(document.querySelectorAll('#measures tr'), (tr) => tr)
+        .filter((tr) => !tr.hidden).map((tr) => Array.from(tr.cells, (c) => c.textContent.trim())),
       caption: document.getElementById('sphere-caption').textContent,
       undoDisabled: document.getElementById('undo').disabled,
     };

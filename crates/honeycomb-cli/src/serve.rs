@@ -1,10 +1,12 @@
 //! `honeycomb serve`: the interactive editor in the browser (a thin front over honeycomb-serve).
 
 use crate::progress::{Output, Spinner};
+use honeycomb::analysis::read_directions;
 use honeycomb::error::rounded;
 use honeycomb::generate::Shape;
-use honeycomb::Walls;
-use honeycomb::{Error, Result};
+use honeycomb::geometry::parse_direction;
+use honeycomb::structure::QuadPattern;
+use honeycomb::{Error, Options, Result, Variant, Vec3, Walls};
 use honeycomb_serve::{start, ServeOptions, Source};
 use std::path::PathBuf;
 
@@ -33,6 +35,21 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     pub walls: Option<String>,
+    /// With a design surface: cap every hexagon with two planar quads, as `pipeline --quads`;
+    /// the page shows their planarity after every edit.
+    #[arg(long, value_name = "zigzag|alternating")]
+    pub quads: Option<QuadPattern>,
+    /// With a design surface: parallel meshes M, M' on the honeycomb's walls, as `pipeline
+    /// --parallel`; the page shows how parallel they stay after every edit.
+    #[arg(long)]
+    pub parallel: bool,
+    /// With a design surface: a shading device against light travelling along DX,DY,DZ, as
+    /// `pipeline --light`; the page shows the light share after every edit.
+    #[arg(long, value_parser = parse_direction, allow_hyphen_values = true)]
+    pub light: Option<Vec3>,
+    /// With --light: more light directions (a day's sun path), one "x y z" per line.
+    #[arg(long, requires = "light")]
+    pub sun_path: Option<PathBuf>,
     /// Built-in surface of the demo (no input): saddle, dome, cylinder or roof.
     #[arg(long, default_value = "dome")]
     pub shape: Shape,
@@ -87,6 +104,13 @@ pub fn run(args: Args) -> Result<()> {
                 .into(),
         ));
     }
+    let variant = variant(&args, surface_input)?;
+    let options = Options {
+        walls,
+        variant,
+        ..Options::default()
+    };
+    options.validate()?;
     let source = match &args.input {
         None => Source::Demo {
             shape: args.shape,
@@ -98,7 +122,7 @@ pub fn run(args: Args) -> Result<()> {
                 path.display()
             )))
         }
-        Some(path) => Source::from_path(path, args.cells, walls),
+        Some(path) => Source::from_path(path, args.cells, options),
     };
     let options = ServeOptions {
         host: if args.public {
@@ -184,4 +208,54 @@ pub fn bench(json: bool) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The variant asked for the honeycomb made on a design surface (one at a time).
+fn variant(args: &Args, surface_input: bool) -> Result<Variant> {
+    let given: Vec<&str> = [
+        (args.quads.is_some(), "--quads"),
+        (args.parallel, "--parallel"),
+        (args.light.is_some(), "--light"),
+    ]
+    .into_iter()
+    .filter_map(|(given, flag)| given.then_some(flag))
+    .collect();
+    if given.len() > 1 {
+        return Err(Error::Parameter(format!(
+            "{}: one variant at a time",
+            given.join(" and ")
+        )));
+    }
+    if let (Some(flag), false) = (given.first(), surface_input) {
+        return Err(Error::Parameter(format!(
+            "{flag} shapes the honeycomb made on a design surface: give one (serve \
+             SURFACE.obj {flag} ...); a structure directory and the demo are edited as they are"
+        )));
+    }
+    Ok(if let Some(pattern) = args.quads {
+        Variant::Quads {
+            pattern,
+            quad_direction: None,
+            w_cons_faces: None,
+            w_fair_zig: None,
+            w_fair_str: None,
+        }
+    } else if args.parallel {
+        Variant::Parallel {
+            depth: None,
+            w_parallel: None,
+            w_depth: None,
+        }
+    } else if let Some(light) = args.light {
+        Variant::Shading {
+            light,
+            sun_path: match &args.sun_path {
+                Some(path) => read_directions(path)?,
+                None => Vec::new(),
+            },
+            w_axes: None,
+        }
+    } else {
+        Variant::Plain
+    })
 }

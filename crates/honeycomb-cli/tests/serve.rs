@@ -131,6 +131,62 @@ fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
     }
 }
 
+/// A design surface served with quads: the page's panel names the variant and shows the
+/// quads' planarity, and shows it measured again after an edit.
+#[test]
+fn browser_shows_the_variant_of_a_design_surface() {
+    if let Some(why) = missing_piece() {
+        if std::env::var("HONEYCOMB_E2E").as_deref() == Ok("1") {
+            panic!("HONEYCOMB_E2E=1 but the browser test cannot run: {why}");
+        }
+        println!("skipped: {why}");
+        return;
+    }
+    let dir = TempDir::new("serve-variant");
+    let surface = dir.join("dome.obj");
+    let dome = honeycomb::generate::design_surface(honeycomb::generate::Shape::Dome);
+    honeycomb::mesh::write_mesh(&surface, &dome).unwrap();
+    let args = ["serve", "--port", "0", "--quiet", "--cells", "200"];
+    let saves = dir.join("saves");
+    let more = [
+        surface.as_os_str(),
+        "--quads".as_ref(),
+        "alternating".as_ref(),
+        "--saves".as_ref(),
+        saves.as_os_str(),
+    ];
+    let (child, stdout) = serve(&args, &more);
+    let _server = Running(child);
+    let mut url = String::new();
+    BufReader::new(stdout).read_line(&mut url).unwrap();
+    let shots = std::env::temp_dir().join("honeycomb-e2e-serve-variant");
+    let _ = std::fs::remove_dir_all(&shots);
+    std::fs::create_dir_all(&shots).unwrap();
+    let out = Command::new("node")
+        .arg("e2e/variant.mjs")
+        .arg(url.trim())
+        .arg(&shots)
+        .current_dir(repo().join("web"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    println!("{stdout}{stderr}");
+    assert!(out.status.success(), "the browser test failed: {stderr}");
+    let findings: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    for row in [&findings["first"], &findings["after"]] {
+        assert_eq!(row["hidden"], false);
+        assert_eq!(row["name"], "quads alternating");
+        assert!(
+            row["unit"].as_str().unwrap().contains("delta_face max"),
+            "{row}"
+        );
+        let max = row["text"].as_str().unwrap().split(" / ").next().unwrap();
+        assert!(max.parse::<f64>().unwrap() < 0.01, "{row}");
+    }
+    assert_ne!(findings["first"]["text"], findings["after"]["text"]);
+}
+
 #[test]
 fn serve_refuses_what_it_cannot_open() {
     let dir = TempDir::new("serve-refusals");
@@ -143,11 +199,25 @@ fn serve_refuses_what_it_cannot_open() {
     );
     let saves = dir.join("saves");
     let s = |p: &Path| p.to_str().unwrap().to_string();
-    let cases: [(Vec<String>, &[&str]); 4] = [
+    let cases: [(Vec<String>, &[&str]); 6] = [
         (vec![s(&missing)], &["no-such-file.obj"]),
         (vec![s(&empty)], &["empty.obj"]),
         (vec![s(&isolated)], &["isolated.obj", "isolated vertex"]),
         (vec!["--vertices".into(), "10".into()], &["--vertices"]),
+        // A variant shapes the honeycomb made on a design surface, one at a time.
+        (
+            vec!["--quads".into(), "zigzag".into()],
+            &["--quads", "design surface"],
+        ),
+        (
+            vec![
+                s(&isolated),
+                "--parallel".into(),
+                "--light".into(),
+                "0,0,-1".into(),
+            ],
+            &["--parallel and --light", "one variant at a time"],
+        ),
     ];
     for (args, keywords) in cases {
         let mut all = vec!["serve".to_string(), "--port".into(), "0".into()];

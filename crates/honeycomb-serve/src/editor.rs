@@ -7,7 +7,7 @@ use crate::protocol::{
 };
 use crate::source::{save_dir, Source};
 use honeycomb::export::{export, write_structure, ExportOptions, Model, Units};
-use honeycomb::interactive::{EditSession, SessionOptions, Workspace};
+use honeycomb::interactive::{EditSession, SessionOptions, Watch, Workspace};
 use honeycomb::mesh::{replace_folder, write_mesh};
 use honeycomb::report::Report;
 use honeycomb::Result;
@@ -70,6 +70,8 @@ struct Current {
     label: String,
     source: Source,
     thickness: Option<f64>,
+    /// What its variant is judged by, measured again after every edit.
+    watch: Option<Watch>,
 }
 
 impl Current {
@@ -120,6 +122,7 @@ impl Editor {
     pub fn run(
         self,
         first: Workspace,
+        watch: Option<Watch>,
         source: Source,
         thickness: Option<f64>,
         ready: std::sync::mpsc::Sender<Result<()>>,
@@ -130,6 +133,7 @@ impl Editor {
             label: source.label(),
             source,
             thickness,
+            watch,
         };
         // The workspace before a load, to go back to when the loaded one cannot be solved.
         let mut previous: Option<Current> = None;
@@ -140,7 +144,7 @@ impl Editor {
                         let _ = r.send(Ok(()));
                     }
                     self.broadcast(self.mesh(&current));
-                    self.broadcast(self.state(&session, &Progress::new()));
+                    self.broadcast(self.state(&session, &current, &Progress::new()));
                     match self.edit(&mut session, &current) {
                         Next::Load(next) => Ok(next),
                         Next::Stop => return,
@@ -166,7 +170,12 @@ impl Editor {
     }
 
     fn mesh(&self, current: &Current) -> Value {
-        mesh_message(&current.ws, &current.label, current.remakes())
+        mesh_message(
+            &current.ws,
+            &current.label,
+            current.remakes(),
+            current.watch.as_ref(),
+        )
     }
 
     fn broadcast(&self, message: Value) {
@@ -174,7 +183,7 @@ impl Editor {
         let _ = self.out.send(Arc::from(message.to_string()));
     }
 
-    fn state(&self, session: &EditSession, p: &Progress) -> Value {
+    fn state(&self, session: &EditSession, current: &Current, p: &Progress) -> Value {
         let info = UpdateInfo {
             seq: p.seq,
             stroke: p.stroke,
@@ -185,7 +194,12 @@ impl Editor {
             undo_page: session.undo_author(),
             redo_page: session.redo_author(),
         };
-        state_message(&session.view(), &info)
+        let view = session.view();
+        // Measured once an edit's solve has ended: the light share samples every cell.
+        let watched = (current.watch.as_ref())
+            .filter(|_| info.done)
+            .map(|w| w.measure(&view.honeycomb, &current.ws.conn, &current.ws.model_surface));
+        state_message(&view, &info, watched.as_ref())
     }
 
     fn edit(&self, session: &mut EditSession, current: &Current) -> Next {
@@ -210,7 +224,7 @@ impl Editor {
                         // `undo_page`.
                         tell(&reply, json!({ "type": "hello", "page": number }));
                         tell(&reply, self.mesh(current));
-                        tell(&reply, self.state(session, &p));
+                        tell(&reply, self.state(session, current, &p));
                     }
                     Command::Download(file, units, reply) => {
                         let _ = reply.send(download(session, &current.ws, &file, units));
@@ -237,7 +251,7 @@ impl Editor {
                 }
             }
             p.seq += 1;
-            self.broadcast(self.state(session, &p));
+            self.broadcast(self.state(session, current, &p));
         }
     }
 
@@ -268,7 +282,7 @@ impl Editor {
                     if !session.solving() {
                         // A slide: nothing to solve, show it now.
                         p.seq += 1;
-                        self.broadcast(self.state(session, p));
+                        self.broadcast(self.state(session, current, p));
                     }
                 }
                 Err(e) => page.tell(error_message(&e.to_string())),
@@ -296,7 +310,7 @@ impl Editor {
                 }
                 instant(p, None);
                 p.seq += 1;
-                self.broadcast(self.state(session, p));
+                self.broadcast(self.state(session, current, p));
             }
             ClientMessage::Save { name } => match self.save(session, &current.ws, &name) {
                 Ok(dir) => self.broadcast(json!({
@@ -316,6 +330,7 @@ impl Editor {
                             label: name,
                             source,
                             thickness: None,
+                            watch: None,
                         })))
                     }
                     Err(e) => page.tell(error_message(&format!("load failed: {e}"))),
@@ -400,10 +415,10 @@ fn remake(
         honeycomb::error::check_positive_length("thickness", t)?;
     }
     let source = match (&current.source, cells) {
-        (Source::Surface { path, walls, .. }, Some(cells)) => Source::Surface {
+        (Source::Surface { path, options, .. }, Some(cells)) => Source::Surface {
             path: path.clone(),
             cells,
-            walls: *walls,
+            options: options.clone(),
         },
         (Source::Structure(_), _) => {
             return Err(Error::Parameter(
@@ -422,12 +437,13 @@ fn remake(
         (source, None) => source.clone(),
     };
     let thickness = thickness.or(current.thickness);
-    let (ws, notes) = source.workspace_with_notes(thickness)?;
+    let crate::source::Made { ws, notes, watch } = source.made(thickness)?;
     let next = Current {
         ws: Arc::new(ws),
         label: source.label(),
         source,
         thickness,
+        watch,
     };
     Ok((next, notes))
 }

@@ -80,7 +80,7 @@ impl Server {
 /// Builds the workspace, solves it into a honeycomb, binds the port and starts serving. Errors
 /// (a bad input, a taken port) come back here, before anything is served.
 pub fn start(source: &Source, options: ServeOptions) -> Result<Server> {
-    let (ws, notes) = source.workspace_with_notes(options.thickness)?;
+    let source::Made { ws, notes, watch } = source.made(options.thickness)?;
     let listener = std::net::TcpListener::bind((options.host, options.port)).map_err(|e| {
         Error::Parameter(format!(
             "cannot listen on {}:{}: {e}",
@@ -108,7 +108,7 @@ pub fn start(source: &Source, options: ServeOptions) -> Result<Server> {
     let (first, thickness) = (source.clone(), options.thickness);
     std::thread::Builder::new()
         .name("editor".into())
-        .spawn(move || editor.run(ws, first, thickness, ready_tx))
+        .spawn(move || editor.run(ws, watch, first, thickness, ready_tx))
         .map_err(|e| Error::Parameter(format!("cannot start the editor thread: {e}")))?;
     ready
         .recv()

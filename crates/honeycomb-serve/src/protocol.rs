@@ -1,7 +1,7 @@
 //! The WebSocket messages between the page and the editor, as JSON text frames.
 
 use honeycomb::export::{Format, Units};
-use honeycomb::interactive::{Edit, View, Workspace};
+use honeycomb::interactive::{Edit, View, Watch, Watched, Workspace};
 use honeycomb::Vec3;
 use serde::Deserialize;
 use serde_json::{json, Value};
@@ -228,7 +228,13 @@ pub struct Remakes {
 /// The topology and the design surface, sent once per connection and after a load.
 /// The topology comes from the workspace: it is the same for every state, so no solve or
 /// measure is needed to send it.
-pub fn mesh_message(ws: &Workspace, source: &str, remakes: Remakes) -> Value {
+/// With a variant, its `name` and, for quads, the `quads` that cap the cells (corners of M).
+pub fn mesh_message(
+    ws: &Workspace,
+    source: &str,
+    remakes: Remakes,
+    watch: Option<&Watch>,
+) -> Value {
     let surface = &ws.model_surface;
     let triangles: Vec<usize> = surface.triangles().iter().flatten().copied().collect();
     let thickness = ws.depths.iter().sum::<f64>() / ws.depths.len().max(1) as f64;
@@ -241,6 +247,13 @@ pub fn mesh_message(ws: &Workspace, source: &str, remakes: Remakes) -> Value {
         "faces": ws.base.faces,
         "edges": ws.conn.edges,
         "surface": { "vertices": flat(surface.vertices()), "triangles": triangles },
+        "variant": watch.map(|w| json!({
+            "name": w.name(),
+            "quads": match w {
+                Watch::Quads { quads, .. } => Some(quads),
+                _ => None,
+            },
+        })),
     })
 }
 
@@ -262,9 +275,10 @@ pub struct UpdateInfo {
 }
 
 /// The geometry and measures after a step (or an instant edit).
-pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
+/// With `watched`, the variant's measure ([`Watched`]) as `variant`.
+pub fn state_message(view: &View, info: &UpdateInfo, watched: Option<&Watched>) -> Value {
     let (h, m) = (&view.honeycomb, &view.measures);
-    let state = json!({
+    let mut state = json!({
         "type": "state",
         "seq": info.seq,
         "stroke": info.stroke,
@@ -291,6 +305,9 @@ pub fn state_message(view: &View, info: &UpdateInfo) -> Value {
             "mean_edge_length": m.mean_edge_length,
         },
     });
+    if let Some(w) = watched {
+        state["variant"] = serde_json::to_value(w).unwrap_or(Value::Null);
+    }
     match non_finite_field(&state) {
         Some(key) => error_message(&format!(
             "the state after this step has a{} {key} value that is not a finite number; not \

@@ -3,10 +3,10 @@
 
 use honeycomb::export::read_structure;
 use honeycomb::generate::{lifted_hex_patch, Shape};
-use honeycomb::interactive::Workspace;
+use honeycomb::interactive::{Watch, Workspace};
 use honeycomb::limits::check_solve_vertices;
 use honeycomb::mesh::{read_mesh, PolyMesh};
-use honeycomb::{pipeline, PipelineOptions, Progress, Surface, Walls};
+use honeycomb::{pipeline, Options, PipelineOptions, Progress, Surface};
 use honeycomb::{Error, Result};
 use std::path::{Path, PathBuf};
 
@@ -17,24 +17,32 @@ pub enum Source {
     /// A structure directory (`structure.json`, and `surface.obj` when it has one).
     Structure(PathBuf),
     /// A design surface: `pipeline` makes a honeycomb of about `cells` cells on it, its
-    /// walls standing as `walls` says.
+    /// walls and its variant as `options` say.
     Surface {
         path: PathBuf,
         cells: usize,
-        walls: Walls,
+        options: Box<Options>,
     },
+}
+
+/// What the editor starts from: the workspace, what the pipeline changed on the way to it
+/// (a surface's notes), and what its variant is judged by.
+pub struct Made {
+    pub ws: Workspace,
+    pub notes: Vec<String>,
+    pub watch: Option<Watch>,
 }
 
 impl Source {
     /// A path names a structure directory or a surface file.
-    pub fn from_path(path: &Path, cells: usize, walls: Walls) -> Source {
+    pub fn from_path(path: &Path, cells: usize, options: Options) -> Source {
         if path.is_dir() {
             Source::Structure(path.to_path_buf())
         } else {
             Source::Surface {
                 path: path.to_path_buf(),
                 cells,
-                walls,
+                options: Box::new(options),
             }
         }
     }
@@ -48,42 +56,58 @@ impl Source {
                 )
             }
             Source::Structure(dir) => dir.display().to_string(),
-            Source::Surface { path, cells, walls } => format!(
-                "{} ({cells} cells, walls {})",
+            Source::Surface {
+                path,
+                cells,
+                options,
+            } => format!(
+                "{} ({cells} cells, walls {}{})",
                 path.display(),
-                walls.label()
+                options.walls.label(),
+                match options.variant.name() {
+                    Some(name) => format!(", {name}"),
+                    None => String::new(),
+                }
             ),
         }
     }
 
     pub fn workspace(&self, thickness: Option<f64>) -> Result<Workspace> {
-        self.workspace_with_notes(thickness).map(|(ws, _)| ws)
+        self.made(thickness).map(|made| made.ws)
     }
 
-    /// [`Source::workspace`], with what the pipeline changed on the way to it (a surface's
-    /// notes), for the front to show.
-    pub fn workspace_with_notes(&self, thickness: Option<f64>) -> Result<(Workspace, Vec<String>)> {
+    /// [`Source::workspace`], with what the pipeline changed on the way to it and what its
+    /// variant is judged by.
+    pub fn made(&self, thickness: Option<f64>) -> Result<Made> {
+        let plain = |ws| Made {
+            ws,
+            notes: Vec::new(),
+            watch: None,
+        };
         match self {
             Source::Demo { shape, vertices } => {
                 check_solve_vertices(&format!("--vertices {vertices}"), *vertices)?;
                 let (base, surface) = lifted_hex_patch(*shape, *vertices);
-                Ok((
-                    Workspace::new(&base, Some(&surface), thickness)?,
-                    Vec::new(),
-                ))
+                Ok(plain(Workspace::new(&base, Some(&surface), thickness)?))
             }
             Source::Structure(dir) => {
                 let (h, _) = read_structure(dir)?;
                 let surface = structure_surface(dir)?;
-                Ok((Workspace::from_honeycomb(&h, surface.as_ref())?, Vec::new()))
+                Ok(plain(Workspace::from_honeycomb(&h, surface.as_ref())?))
             }
-            Source::Surface { path, cells, walls } => {
+            Source::Surface {
+                path,
+                cells,
+                options,
+            } => {
                 let surface = Surface::new(read_mesh(path)?.mesh)?;
                 // As `honeycomb pipeline` makes it, so that editing starts from a honeycomb.
-                let mut options = PipelineOptions::new(*cells);
-                options.options.walls = *walls;
-                options.options.thickness = thickness;
-                let made = pipeline(&surface, &options, &mut Progress::silent())?;
+                let mut pipeline_options = PipelineOptions::new(*cells);
+                pipeline_options.options = (**options).clone();
+                if thickness.is_some() {
+                    pipeline_options.options.thickness = thickness;
+                }
+                let made = pipeline(&surface, &pipeline_options, &mut Progress::silent())?;
                 if !made.is_honeycomb() {
                     let m = &made.measures;
                     return Err(Error::Solver(format!(
@@ -94,8 +118,15 @@ impl Source {
                         honeycomb::error::rounded(m.delta_max, 3)
                     )));
                 }
-                let ws = Workspace::from_honeycomb(&made.honeycomb, Some(surface.source_mesh()))?;
-                Ok((ws, made.report.notes))
+                let mut notes = made.report.notes.clone();
+                notes.extend(made.verdict.unmet.clone());
+                let watch = Watch::of(&made, &options.variant);
+                let mut ws =
+                    Workspace::from_honeycomb(&made.honeycomb, Some(surface.source_mesh()))?;
+                if watch.is_some() {
+                    ws = ws.as_it_is();
+                }
+                Ok(Made { ws, notes, watch })
             }
         }
     }

@@ -1,7 +1,7 @@
 //! The editor server over real sockets: what it serves, what it refuses, how it streams.
 
 use honeycomb::generate::Shape;
-use honeycomb::Walls;
+use honeycomb::{Options, Variant};
 use honeycomb_serve::latency::Client;
 use honeycomb_serve::{start, ServeOptions, Server, Source};
 use serde_json::{json, Value};
@@ -269,7 +269,7 @@ fn a_design_surface_gets_a_hex_mesh_first() {
         save_root: dir.join("saves"),
         ..ServeOptions::default()
     };
-    let server = start(&Source::from_path(&path, 200, Walls::Across), options).unwrap();
+    let server = start(&Source::from_path(&path, 200, Options::default()), options).unwrap();
     let (_, mesh, state) = connect(&server);
     let nv = mesh["vertices"].as_u64().unwrap();
     assert!((300..600).contains(&nv), "{nv} vertices for 200 cells");
@@ -297,7 +297,7 @@ fn a_design_surface_gets_a_hex_mesh_first() {
     assert!(remade["source"].as_str().unwrap().contains("120 cells"));
     server.stop();
     // A missing file is an error before anything is served.
-    let missing = Source::from_path(&dir.join("missing.obj"), 200, Walls::Across);
+    let missing = Source::from_path(&dir.join("missing.obj"), 200, Options::default());
     assert!(start(
         &missing,
         ServeOptions {
@@ -692,4 +692,155 @@ fn parameters_beyond_the_bounds_are_refused_before_serving() {
             .contains("--vertices 5000000: a solve of about"),
         "{e}"
     );
+}
+
+/// The distance between segments `p0 p1` and `q0 q1` (closest points, clamped to the ends).
+fn segment_distance(p0: [f64; 3], p1: [f64; 3], q0: [f64; 3], q1: [f64; 3]) -> f64 {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let at = |p: [f64; 3], d: [f64; 3], t: f64| [p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]];
+    let (d1, d2, r) = (sub(p1, p0), sub(q1, q0), sub(p0, q0));
+    let (a, e, f) = (dot(d1, d1), dot(d2, d2), dot(d2, r));
+    let (b, c) = (dot(d1, d2), dot(d1, r));
+    let denom = a * e - b * b;
+    let mut s = if denom > 1e-300 {
+        ((b * f - c * e) / denom).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let mut t = (b * s + f) / e;
+    if t < 0.0 {
+        t = 0.0;
+        s = (-c / a).clamp(0.0, 1.0);
+    } else if t > 1.0 {
+        t = 1.0;
+        s = ((b - c) / a).clamp(0.0, 1.0);
+    }
+    let d = sub(at(p0, d1, s), at(q0, d2, t));
+    dot(d, d).sqrt()
+}
+
+/// A design surface made with a variant: the page hears its name (and the quads that cap the
+/// cells), and after every edit the variant's measure taken from the edited meshes.
+#[test]
+fn a_design_surface_keeps_its_variant_in_view() {
+    let dir = std::env::temp_dir().join(format!("honeycomb-serve-variant-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let surface = honeycomb::generate::design_surface(Shape::Dome);
+    let path = dir.join("dome.obj");
+    honeycomb::mesh::write_mesh(&path, &surface).unwrap();
+    let start_with = |variant: Variant, cells: usize| {
+        let options = ServeOptions {
+            port: 0,
+            save_root: dir.join("saves"),
+            ..ServeOptions::default()
+        };
+        let made = Options {
+            variant,
+            ..Options::default()
+        };
+        start(&Source::from_path(&path, cells, made), options).unwrap()
+    };
+    // Quads: the planarity of the quads, as the page can measure it from the state.
+    let server = start_with(
+        Variant::Quads {
+            pattern: honeycomb::structure::QuadPattern::Alternating,
+            quad_direction: None,
+            w_cons_faces: None,
+            w_fair_zig: None,
+            w_fair_str: None,
+        },
+        200,
+    );
+    let (mut c, mesh, first) = connect(&server);
+    assert_eq!(mesh["variant"]["name"], "quads alternating");
+    assert!(mesh["source"]
+        .as_str()
+        .unwrap()
+        .contains("quads alternating"));
+    let quads: Vec<[usize; 4]> = serde_json::from_value(mesh["variant"]["quads"].clone()).unwrap();
+    assert!(quads.len() > 150, "{} quads for 200 cells", quads.len());
+    let planarity = |state: &Value| {
+        let p = |v: usize| {
+            let f = |k: usize| state["base"][3 * v + k].as_f64().unwrap();
+            [f(0), f(1), f(2)]
+        };
+        let worst = quads.iter().fold(0.0f64, |worst, q| {
+            let c = q.map(p);
+            let len = |a: [f64; 3], b: [f64; 3]| {
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+            };
+            let mean = (0..4).map(|k| len(c[k], c[(k + 1) % 4])).sum::<f64>() / 4.0;
+            worst.max(segment_distance(c[0], c[2], c[1], c[3]) / mean)
+        });
+        (worst, state["variant"]["delta_face_max"].as_f64().unwrap())
+    };
+    // The page's coordinates are single precision.
+    let close = |(measured, shown): (f64, f64)| (measured - shown).abs() < 1e-3 * shown.max(1e-4);
+    let (measured, shown) = planarity(&first);
+    assert_eq!(first["variant"]["variant"], "quads");
+    assert!(close((measured, shown)), "{measured} vs {shown}");
+    assert!(shown <= 0.01, "the capped dome's quads: {shown}");
+    // Turning an axis moves vertices: the quads' planarity is measured again on the result.
+    let v = mesh["vertices"].as_u64().unwrap() as usize / 2;
+    let axis = |s: &Value, k: usize| {
+        s["offset"][3 * v + k].as_f64().unwrap() - s["base"][3 * v + k].as_f64().unwrap()
+    };
+    let turned = [
+        axis(&first, 0) + 0.3 * axis(&first, 2),
+        axis(&first, 1),
+        axis(&first, 2),
+    ];
+    c.send(
+        &json!({"type": "drag_axis", "vertex": v, "direction": turned, "radius": 2, "stroke": 1}),
+    )
+    .unwrap();
+    let done = c
+        .until("state", |s| s["done"] == true && s["stroke"] == 1)
+        .unwrap();
+    let (measured, after) = planarity(&done);
+    assert!(close((measured, after)), "{measured} vs {after}");
+    assert!(
+        after != shown,
+        "the quads' planarity was not measured again"
+    );
+    assert!(done["base"] != first["base"], "the edit moved no vertex");
+    server.stop();
+
+    // Shading: the light share before and after, through the walls as they stand.
+    // A sun 45 degrees high from azimuth 200.
+    let light = [0.664, 0.242, -0.707];
+    let server = start_with(
+        Variant::Shading {
+            light: honeycomb::Vec3::from_slice(&light),
+            sun_path: Vec::new(),
+            w_axes: None,
+        },
+        500,
+    );
+    let (_, mesh, first) = connect(&server);
+    assert_eq!(mesh["variant"]["name"], "shading");
+    let shading = &first["variant"]["light"];
+    let (before, after) = (
+        shading["before"].as_f64().unwrap(),
+        shading["after"].as_f64().unwrap(),
+    );
+    assert!(after <= 0.5 * before, "{before} -> {after}");
+    server.stop();
+
+    // Parallel meshes: each edge's angle to its twin.
+    let server = start_with(
+        Variant::Parallel {
+            depth: None,
+            w_parallel: None,
+            w_depth: None,
+        },
+        200,
+    );
+    let (_, mesh, first) = connect(&server);
+    assert_eq!(mesh["variant"]["name"], "parallel meshes");
+    let beta = first["variant"]["beta_max_deg"].as_f64().unwrap();
+    assert!(beta < 0.5, "beta {beta}");
+    server.stop();
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -138,6 +138,28 @@ pub enum Variant {
 }
 
 impl Variant {
+    /// What the variant is called, for labels; `None` for a plain honeycomb.
+    pub fn name(&self) -> Option<String> {
+        match self {
+            Variant::Plain => None,
+            Variant::Parallel { .. } => Some("parallel meshes".into()),
+            Variant::Quads { pattern, .. } => Some(format!(
+                "quads {}",
+                match pattern {
+                    QuadPattern::Zigzag => "zigzag",
+                    QuadPattern::Alternating => "alternating",
+                }
+            )),
+            Variant::Axes { .. } => Some("prescribed axes".into()),
+            Variant::Shading { light, .. } => Some(format!(
+                "shading, light {}",
+                crate::error::short_vector(*light)
+            )),
+        }
+    }
+}
+
+impl Variant {
     pub fn is_plain(&self) -> bool {
         *self == Variant::Plain
     }

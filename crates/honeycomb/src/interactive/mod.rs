@@ -10,8 +10,10 @@
 //! by a newer one between steps.
 
 mod spread;
+mod watch;
 
 pub use spread::{damping, rings, rotate, spread_turn};
+pub use watch::{Watch, Watched};
 
 use crate::constraints::{AxisTargets, Layout, SharedTargets, VertexTargets};
 use crate::error::{Error, Result};
@@ -40,6 +42,9 @@ pub struct Workspace {
     pub normals: Vec<Vec3>,
     /// Distance of M' from M per vertex (model units).
     pub depths: Vec<f64>,
+    /// The session starts from these vertices and walls as they are, without the first solve
+    /// (see [`Workspace::as_it_is`]).
+    pub as_it_is: bool,
 }
 
 impl Workspace {
@@ -80,6 +85,7 @@ impl Workspace {
         Ok(Workspace {
             frame,
             depths: vec![thickness; base.vertices.len()],
+            as_it_is: false,
             base: normalized,
             conn,
             surface: Arc::new(surface),
@@ -102,6 +108,14 @@ impl Workspace {
             *n = if wall.dot(*n) < 0.0 { -wall } else { wall };
         }
         Ok(ws)
+    }
+
+    /// This workspace started as it is: a variant's honeycomb (quads, parallel meshes,
+    /// shading) whose vertices left S on purpose, which the first solve's closeness would pull
+    /// back and so undo part of the variant. Edits still solve with closeness.
+    pub fn as_it_is(mut self) -> Workspace {
+        self.as_it_is = true;
+        self
     }
 }
 
@@ -297,11 +311,15 @@ impl EditSession {
         let (unknowns, first) = first.finish();
         let (mut x, _) = unknowns.into_parts();
         let blocks = block_positions(base, conn, x.len());
-        GuidedProjection::with_positions(x.len(), first, Some(&blocks))?.solve(
-            &mut x,
-            &solver_options,
-            &mut |_| {},
-        )?;
+        if ws.as_it_is {
+            drop(first);
+        } else {
+            GuidedProjection::with_positions(x.len(), first, Some(&blocks))?.solve(
+                &mut x,
+                &solver_options,
+                &mut |_| {},
+            )?;
+        }
         // The edits' walls are planes with offsets, so the solver eliminates the vertices
         // before it factors: a step at 8.8k vertices then factors half the operations.
         let vertices: Vec<Vec3> = (0..nv).map(|v| layout.vertex_at(&x, v)).collect();
