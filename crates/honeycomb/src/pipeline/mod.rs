@@ -471,11 +471,7 @@ pub fn solve_base(
     };
     let mut notes = Vec::new();
     if made_exact {
-        notes.push(format!(
-            "the prescribed axes held the nodes and walls off exact; {} iterations without \
-             them made it exact",
-            iterations - guided_iterations
-        ));
+        notes.push(made_exact_note(iterations - guided_iterations));
     }
     let mut report = Report::new(&optimized, &measures, start.elapsed().as_secs_f64());
     report.walls = if walls == Walls::Across {
@@ -813,6 +809,14 @@ fn exact(
     })
 }
 
+/// What [`exact`] did, in a note.
+fn made_exact_note(iterations: usize) -> String {
+    format!(
+        "the prescribed axes held the nodes and walls off exact; {iterations} iterations \
+         without them made it exact"
+    )
+}
+
 /// Within what the paper's variants ask of a honeycomb: omega below 0.05 degrees, delta
 /// below 1e-5.
 fn is_exact(m: &Measures) -> bool {
@@ -1014,11 +1018,29 @@ fn guided(
         },
     )?;
     let mut s = made.settled;
+    let mut notes = Vec::new();
+    // Axes prescribed across a light (shading's), not a direction the walls were asked for.
+    if matches!(walls, Walls::Across | Walls::Free) {
+        let before = iterations;
+        let made_exact;
+        (s.optimized, s.measures, made_exact) = exact(
+            s.optimized,
+            s.measures,
+            surface,
+            model_surface,
+            &options.optimize,
+            &mut |info| {
+                iterations += 1;
+                progress(Step::Iteration("making it exact", 1, info))
+            },
+        )?;
+        if made_exact {
+            notes.push(made_exact_note(iterations - before));
+        }
+    }
     let (h, conn) = (&mut s.optimized.honeycomb, &s.optimized.connectivity);
     let asked = options.optimize.thickness;
-    let mut notes: Vec<String> = uncross(h, conn, &mut s.measures, model_surface, asked)
-        .into_iter()
-        .collect();
+    notes.extend(uncross(h, conn, &mut s.measures, model_surface, asked));
     if made.per_edge_fallback {
         notes.push(
             "the solve for one point per cell gave no honeycomb; this is the solve for one \
