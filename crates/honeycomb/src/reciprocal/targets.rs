@@ -6,8 +6,13 @@ use crate::geometry::Vec3;
 
 /// How far shading turns a node axis from S's normal at most (radians), in the order tried:
 /// first so far that the walls lean no more than they stand; then less, where the sheet
-/// cannot follow so far on a doubly curved S.
-pub const SHADING_TILTS: [f64; 2] = [std::f64::consts::FRAC_PI_4, std::f64::consts::FRAC_PI_6];
+/// cannot follow so far on a doubly curved S; then further, where a high sun's plane across
+/// the light lies beyond the first turn and the walls block too little.
+pub const SHADING_TILTS: [f64; 3] = [
+    std::f64::consts::FRAC_PI_4,
+    std::f64::consts::FRAC_PI_6,
+    std::f64::consts::FRAC_PI_3,
+];
 
 /// The axis each node is fitted to, from S's unit normal where it stands.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
