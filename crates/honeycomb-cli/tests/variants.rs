@@ -156,14 +156,15 @@ fn shading_reports_the_light_before_and_after_per_direction() {
     );
     assert_eq!(shading["sun_path"].as_array().unwrap().len(), 2);
     assert_eq!(shading["met"], true);
-    // On this mesh the walls turned across the light block too little over the sun path; the
-    // guided projection with the axes prescribed across it is kept, made exact.
+    // On this mesh the walls turned across the light block too little over the sun path or
+    // are not clean; the guided projection with the axes prescribed across it is kept, made
+    // exact.
     assert_eq!(report["honeycomb"], true);
     assert!(number(&report, "omega_max_deg") < 0.05);
     assert!(number(&report, "delta_max") < 1e-5);
     let notes = report["notes"].to_string();
     assert!(
-        notes.contains("prescribed across the light") && notes.contains("made it exact"),
+        notes.contains("guided projection") && notes.contains("made it exact"),
         "{notes}"
     );
 

@@ -119,7 +119,12 @@ pub fn optimize(
         solver_options.thickness = None;
         let tries = SHADING_TILTS.map(ShadingTry::Turned);
         let tries = [&tries[..], &[ShadingTry::Prescribed]].concat();
+        // A turned try whose walls were not clean already ended in the guided projection.
+        let mut guided_ran = false;
         return shading_tries(&tries, progress, |shading_try, progress| {
+            if shading_try == ShadingTry::Prescribed && guided_ran {
+                return Ok(None);
+            }
             let (walls, targets) = match shading_try {
                 ShadingTry::Turned(tilt) => (options.walls, shading.targets(tilt)),
                 // `solver_options` prescribe the axes across the light.
@@ -133,6 +138,7 @@ pub fn optimize(
                 &solver_options,
                 &mut |step| progress.step(step),
             )?;
+            guided_ran |= solved.report.walls == Walls::Free;
             let (optimized, report) = match &quads {
                 Some(q) => cap_with_quads(
                     solved.optimized,
@@ -145,7 +151,7 @@ pub fn optimize(
                 None => (solved.optimized, solved.report),
             };
             let (optimized, report) = shade(optimized, report, surface, shading, targets);
-            Ok(outcome(optimized, report, solved.base, None))
+            Ok(Some(outcome(optimized, report, solved.base, None)))
         });
     }
     let (optimized, report) = if solver_options.is_variant() {
@@ -329,12 +335,12 @@ fn shading_pipeline(
         strategy.across.targets = targets;
         let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
         let (optimized, report) = shade(made.optimized, made.report, surface, shading, targets);
-        Ok(outcome(
+        Ok(Some(outcome(
             optimized,
             report,
             made.base,
             Some(made.initialized.report),
-        ))
+        )))
     })
 }
 
@@ -365,13 +371,13 @@ impl std::fmt::Display for ShadingTry {
     }
 }
 
-/// A shading device: each of `tries` in turn (`shaded` makes one), until one is a honeycomb
-/// that blocks enough; else the one that blocks most. Notes say what the other tries fell
-/// short of.
+/// A shading device: each of `tries` in turn (`shaded` makes one, or `None` for a try that
+/// would repeat an earlier one), until one is a honeycomb that blocks enough; else the one
+/// that blocks most. Notes say what the other tries fell short of.
 fn shading_tries(
     tries: &[ShadingTry],
     progress: &mut Progress,
-    mut shaded: impl FnMut(ShadingTry, &mut Progress) -> Result<Outcome>,
+    mut shaded: impl FnMut(ShadingTry, &mut Progress) -> Result<Option<Outcome>>,
 ) -> Result<Outcome> {
     let start = Instant::now();
     // Not a honeycomb last, then by the share let through against the reference's.
@@ -386,7 +392,9 @@ fn shading_tries(
     // What each try fell short of.
     let (mut short, mut spent) = (Vec::new(), 0);
     for &this in tries {
-        let out = shaded(this, progress)?;
+        let Some(out) = shaded(this, progress)? else {
+            continue;
+        };
         spent += out.report.iterations_total;
         let met = out.verdict.honeycomb && out.verdict.unmet.is_none();
         if let Some(unmet) = &out.verdict.unmet {
