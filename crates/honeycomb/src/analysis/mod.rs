@@ -8,7 +8,7 @@ mod spherical_image;
 
 pub use light::{light_share, read_directions, LightShare, DEFAULT_LIGHT_SAMPLES};
 pub use shading::{
-    extruded_along_normals, shading_report, LightComparison, ShadingReport, Shares, SHADING_DEPTH,
-    SHADING_GOAL,
+    extruded_along_normals, shading_against_normals, shading_report, LightComparison,
+    ShadingReport, Shares, SHADING_DEPTH, SHADING_GOAL,
 };
 pub use spherical_image::{spherical_image, CellImage, SphericalImage};

@@ -121,6 +121,20 @@ impl ShadingReport {
     }
 }
 
+/// The shares of `h` (whose cells are `conn`'s) against its own cells extruded along the
+/// normals of S (`surface`) to `depth`: the shading's judgement.
+pub fn shading_against_normals(
+    h: &Honeycomb,
+    conn: &Connectivity,
+    surface: &Surface,
+    depth: f64,
+    light: Vec3,
+    sun_path: &[Vec3],
+) -> ShadingReport {
+    let before = extruded_along_normals(&h.base, conn, surface, depth);
+    shading_report(&before, h, depth, light, sun_path)
+}
+
 /// The shares of `after` against `before` (walls `depth` deep) for `light` and `sun_path`.
 pub fn shading_report(
     before: &Honeycomb,

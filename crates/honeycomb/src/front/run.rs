@@ -2,7 +2,7 @@
 
 use super::options::Shading;
 use super::{BaseMesh, Options, Outcome, Progress, Step, Variant, Verdict};
-use crate::analysis::{extruded_along_normals, shading_report, SHADING_DEPTH};
+use crate::analysis::{shading_against_normals, SHADING_DEPTH};
 use crate::error::{Error, Result};
 use crate::init::{CellSize, InitOptions};
 use crate::mesh::check_base_near_surface;
@@ -244,8 +244,15 @@ fn shade(
         .depth
         .unwrap_or(SHADING_DEPTH * h.base.mean_edge_length());
     let deep = h.deepened(&optimized.connectivity, depth, h.thickness.min(depth));
-    let before = extruded_along_normals(&deep.base, &optimized.connectivity, surface, depth);
-    let light = shading_report(&before, &deep, depth, shading.light, &shading.sun_path);
+    let conn = &optimized.connectivity;
+    let light = shading_against_normals(
+        &deep,
+        conn,
+        surface,
+        depth,
+        shading.light,
+        &shading.sun_path,
+    );
     let axes: Vec<Vec3> = (deep.base.vertices.iter())
         .map(|&v| targets.at(surface.normal_at(v)))
         .collect();

@@ -2,7 +2,7 @@
 //! (planar quads, parallel meshes, a share of the light): that is measured again from the
 //! edited meshes, so that the editor shows what an edit cost.
 
-use crate::analysis::{extruded_along_normals, shading_report, ShadingReport};
+use crate::analysis::{shading_against_normals, ShadingReport};
 use crate::geometry::Vec3;
 use crate::mesh::Connectivity;
 use crate::structure::{
@@ -92,8 +92,8 @@ impl Watch {
             Watch::Shading { light, sun_path } => {
                 let n = h.base.vertices.len().max(1) as f64;
                 let depth = h.depths().sum::<f64>() / n;
-                let before = extruded_along_normals(&h.base, conn, surface, depth);
-                Watched::Shading(shading_report(&before, h, depth, *light, sun_path))
+                let shading = shading_against_normals(h, conn, surface, depth, *light, sun_path);
+                Watched::Shading(shading)
             }
         }
     }
