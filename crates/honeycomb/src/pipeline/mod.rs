@@ -454,21 +454,18 @@ pub fn solve_base(
     })?;
     let measures = measure(&optimized.honeycomb, model_surface);
     let guided_iterations = iterations;
-    let (optimized, measures, made_exact) = if walls == Walls::Across || walls == Walls::Free {
-        exact(
-            optimized,
-            measures,
-            surface_mesh,
-            model_surface,
-            &prescribed,
-            &mut |info| {
-                iterations += 1;
-                progress(Step::Iteration("making it exact", 1, info))
-            },
-        )?
-    } else {
-        (optimized, measures, false)
-    };
+    let (optimized, measures, made_exact) = exact(
+        optimized,
+        measures,
+        walls,
+        surface_mesh,
+        model_surface,
+        &prescribed,
+        &mut |info| {
+            iterations += 1;
+            progress(Step::Iteration("making it exact", 1, info))
+        },
+    )?;
     let mut notes = Vec::new();
     if made_exact {
         notes.push(made_exact_note(iterations - guided_iterations));
@@ -777,17 +774,20 @@ fn resolved(
 /// The guided projection with prescribed axes (shading's) made exact: the soft axes hold
 /// the node and wall conditions off by about their weight, so a result short of the
 /// variants' tolerances is solved again without them ([`resolved`]), the axes moving a
-/// little. The result as it was unless that is exact, uncrossed where it was, and on S;
-/// `true` when it was made exact.
+/// little. Only for axes prescribed across a light (walls across S or free), not a
+/// direction the walls were asked to stand in (`walls`). The result as it was unless that is
+/// exact, uncrossed where it was, and on S; `true` when it was made exact.
 fn exact(
     optimized: Optimized,
     measures: Measures,
+    walls: Walls,
     surface: &PolyMesh,
     model_surface: &Surface,
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<(Optimized, Measures, bool)> {
-    if options.axes.is_none() || is_exact(&measures) {
+    let shading = matches!(walls, Walls::Across | Walls::Free) && options.axes.is_some();
+    if !shading || is_exact(&measures) {
         return Ok((optimized, measures, false));
     }
     let again = resolved(
@@ -1019,24 +1019,22 @@ fn guided(
     )?;
     let mut s = made.settled;
     let mut notes = Vec::new();
-    // Axes prescribed across a light (shading's), not a direction the walls were asked for.
-    if matches!(walls, Walls::Across | Walls::Free) {
-        let before = iterations;
-        let made_exact;
-        (s.optimized, s.measures, made_exact) = exact(
-            s.optimized,
-            s.measures,
-            surface,
-            model_surface,
-            &options.optimize,
-            &mut |info| {
-                iterations += 1;
-                progress(Step::Iteration("making it exact", 1, info))
-            },
-        )?;
-        if made_exact {
-            notes.push(made_exact_note(iterations - before));
-        }
+    let before = iterations;
+    let made_exact;
+    (s.optimized, s.measures, made_exact) = exact(
+        s.optimized,
+        s.measures,
+        walls,
+        surface,
+        model_surface,
+        &options.optimize,
+        &mut |info| {
+            iterations += 1;
+            progress(Step::Iteration("making it exact", 1, info))
+        },
+    )?;
+    if made_exact {
+        notes.push(made_exact_note(iterations - before));
     }
     let (h, conn) = (&mut s.optimized.honeycomb, &s.optimized.connectivity);
     let asked = options.optimize.thickness;
