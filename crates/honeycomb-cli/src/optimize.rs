@@ -236,21 +236,12 @@ impl SolveArgs {
                     .into(),
             ));
         }
-        let given: Vec<&str> = [
+        one_variant(&[
             (self.parallel, "--parallel"),
             (self.quads.is_some(), "--quads"),
             (self.axes.is_some(), "--axes"),
             (self.light.is_some(), "--light"),
-        ]
-        .into_iter()
-        .filter_map(|(given, flag)| given.then_some(flag))
-        .collect();
-        if given.len() > 1 {
-            return Err(Error::Parameter(format!(
-                "{}: one variant at a time",
-                given.join(" and ")
-            )));
-        }
+        ])?;
         let variant = if self.parallel {
             Variant::Parallel {
                 depth: self.depth,
@@ -321,6 +312,21 @@ impl SolveArgs {
         }
         Ok(options)
     }
+}
+
+/// The one variant flag given of `flags` (each with whether it was given), if any; more than
+/// one is an error naming them.
+pub fn one_variant<'a>(flags: &[(bool, &'a str)]) -> Result<Option<&'a str>> {
+    let given: Vec<&str> = (flags.iter())
+        .filter_map(|&(given, flag)| given.then_some(flag))
+        .collect();
+    if given.len() > 1 {
+        return Err(Error::Parameter(format!(
+            "{}: one variant at a time",
+            given.join(" and ")
+        )));
+    }
+    Ok(given.first().copied())
 }
 
 /// Reads a mesh, passing the reader's warnings to stderr.

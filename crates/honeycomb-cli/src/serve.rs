@@ -212,21 +212,12 @@ pub fn bench(json: bool) -> Result<()> {
 
 /// The variant asked for the honeycomb made on a design surface (one at a time).
 fn variant(args: &Args, surface_input: bool) -> Result<Variant> {
-    let given: Vec<&str> = [
+    let given = crate::optimize::one_variant(&[
         (args.quads.is_some(), "--quads"),
         (args.parallel, "--parallel"),
         (args.light.is_some(), "--light"),
-    ]
-    .into_iter()
-    .filter_map(|(given, flag)| given.then_some(flag))
-    .collect();
-    if given.len() > 1 {
-        return Err(Error::Parameter(format!(
-            "{}: one variant at a time",
-            given.join(" and ")
-        )));
-    }
-    if let (Some(flag), false) = (given.first(), surface_input) {
+    ])?;
+    if let (Some(flag), false) = (given, surface_input) {
         return Err(Error::Parameter(format!(
             "{flag} shapes the honeycomb made on a design surface: give one (serve \
              SURFACE.obj {flag} ...); a structure directory and the demo are edited as they are"
