@@ -1,6 +1,7 @@
 //! The editor server over real sockets: what it serves, what it refuses, how it streams.
 
 use honeycomb::generate::Shape;
+use honeycomb::structure::quad_planarity;
 use honeycomb::{Options, Variant};
 use honeycomb_serve::latency::Client;
 use honeycomb_serve::{start, ServeOptions, Server, Source};
@@ -694,32 +695,6 @@ fn parameters_beyond_the_bounds_are_refused_before_serving() {
     );
 }
 
-/// The distance between segments `p0 p1` and `q0 q1` (closest points, clamped to the ends).
-fn segment_distance(p0: [f64; 3], p1: [f64; 3], q0: [f64; 3], q1: [f64; 3]) -> f64 {
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let at = |p: [f64; 3], d: [f64; 3], t: f64| [p[0] + t * d[0], p[1] + t * d[1], p[2] + t * d[2]];
-    let (d1, d2, r) = (sub(p1, p0), sub(q1, q0), sub(p0, q0));
-    let (a, e, f) = (dot(d1, d1), dot(d2, d2), dot(d2, r));
-    let (b, c) = (dot(d1, d2), dot(d1, r));
-    let denom = a * e - b * b;
-    let mut s = if denom > 1e-300 {
-        ((b * f - c * e) / denom).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let mut t = (b * s + f) / e;
-    if t < 0.0 {
-        t = 0.0;
-        s = (-c / a).clamp(0.0, 1.0);
-    } else if t > 1.0 {
-        t = 1.0;
-        s = ((b - c) / a).clamp(0.0, 1.0);
-    }
-    let d = sub(at(p0, d1, s), at(q0, d2, t));
-    dot(d, d).sqrt()
-}
-
 /// A design surface made with a variant: the page hears its name (and the quads that cap the
 /// cells), and after every edit the variant's measure taken from the edited meshes.
 #[test]
@@ -760,19 +735,13 @@ fn a_design_surface_keeps_its_variant_in_view() {
         .contains("quads alternating"));
     let quads: Vec<[usize; 4]> = serde_json::from_value(mesh["variant"]["quads"].clone()).unwrap();
     assert!(quads.len() > 150, "{} quads for 200 cells", quads.len());
+    // The quads' planarity on the page's coordinates, against what the page is told.
     let planarity = |state: &Value| {
         let p = |v: usize| {
             let f = |k: usize| state["base"][3 * v + k].as_f64().unwrap();
-            [f(0), f(1), f(2)]
+            honeycomb::Vec3::new(f(0), f(1), f(2))
         };
-        let worst = quads.iter().fold(0.0f64, |worst, q| {
-            let c = q.map(p);
-            let len = |a: [f64; 3], b: [f64; 3]| {
-                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-            };
-            let mean = (0..4).map(|k| len(c[k], c[(k + 1) % 4])).sum::<f64>() / 4.0;
-            worst.max(segment_distance(c[0], c[2], c[1], c[3]) / mean)
-        });
+        let worst = (quads.iter()).fold(0.0f64, |worst, q| worst.max(quad_planarity(q.map(p))));
         (worst, state["variant"]["delta_face_max"].as_f64().unwrap())
     };
     // The page's coordinates are single precision.
