@@ -6,18 +6,10 @@
 // file. No request may fail (a 404 included). Screenshots go into DIR.
 // Usage: node e2e/drag-axis.mjs URL DIR   (CHROMIUM: the browser, default /usr/bin/chromium).
 // Prints one JSON line of findings; exits non-zero on a failed check.
-import { chromium } from 'playwright-core';
+import { fail, launch, urlAndShots } from './browser.mjs';
 
-const [url, shots] = process.argv.slice(2);
-const fail = (message) => { console.error(`e2e: ${message}`); process.exit(1); };
-if (!url || !shots) fail('usage: node e2e/drag-axis.mjs URL DIR');
-
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
+const [url, shots] = urlAndShots('drag-axis.mjs');
+const browser = await launch();
 try {
   const context = await browser.newContext({ viewport: { width: 1280, height: 800 } });
   const page = await context.newPage();

@@ -3,18 +3,10 @@
 // and reads the row again once the re-solve has ended. Screenshot variant.png into DIR.
 // Usage: node e2e/variant.mjs URL DIR   (CHROMIUM: the browser, default /usr/bin/chromium).
 // Prints one JSON line of findings; exits non-zero on a failed check.
-import { chromium } from 'playwright-core';
+import { fail, launch, urlAndShots } from './browser.mjs';
 
-const [url, shots] = process.argv.slice(2);
-const fail = (message) => { console.error(`e2e: ${message}`); process.exit(1); };
-if (!url || !shots) fail('usage: node e2e/variant.mjs URL DIR');
-
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync',
-    '--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
+const [url, shots] = urlAndShots('variant.mjs');
+const browser = await launch();
 try {
   const page = await (await browser.newContext({ viewport: { width: 1280, height: 800 } })).newPage();
   const errors = [];

@@ -56,13 +56,22 @@ fn missing_piece() -> Option<String> {
     None
 }
 
+/// Whether the browser tests can run; else why not is printed, and with HONEYCOMB_E2E=1 (CI)
+/// that is a failure.
+fn browser_at_hand() -> bool {
+    let Some(why) = missing_piece() else {
+        return true;
+    };
+    if std::env::var("HONEYCOMB_E2E").as_deref() == Ok("1") {
+        panic!("HONEYCOMB_E2E=1 but the browser test cannot run: {why}");
+    }
+    println!("skipped: {why}");
+    false
+}
+
 #[test]
 fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
-    if let Some(why) = missing_piece() {
-        if std::env::var("HONEYCOMB_E2E").as_deref() == Ok("1") {
-            panic!("HONEYCOMB_E2E=1 but the browser test cannot run: {why}");
-        }
-        println!("skipped: {why}");
+    if !browser_at_hand() {
         return;
     }
     let dir = TempDir::new("serve-browser");
@@ -135,11 +144,7 @@ fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
 /// quads' planarity, and shows it measured again after an edit.
 #[test]
 fn browser_shows_the_variant_of_a_design_surface() {
-    if let Some(why) = missing_piece() {
-        if std::env::var("HONEYCOMB_E2E").as_deref() == Ok("1") {
-            panic!("HONEYCOMB_E2E=1 but the browser test cannot run: {why}");
-        }
-        println!("skipped: {why}");
+    if !browser_at_hand() {
         return;
     }
     let dir = TempDir::new("serve-variant");
