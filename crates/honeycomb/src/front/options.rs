@@ -143,13 +143,7 @@ impl Variant {
         match self {
             Variant::Plain => None,
             Variant::Parallel { .. } => Some("parallel meshes".into()),
-            Variant::Quads { pattern, .. } => Some(format!(
-                "quads {}",
-                match pattern {
-                    QuadPattern::Zigzag => "zigzag",
-                    QuadPattern::Alternating => "alternating",
-                }
-            )),
+            Variant::Quads { pattern, .. } => Some(format!("quads {}", pattern.label())),
             Variant::Axes { .. } => Some("prescribed axes".into()),
             Variant::Shading { light, .. } => Some(format!(
                 "shading, light {}",

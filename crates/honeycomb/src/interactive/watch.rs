@@ -67,15 +67,11 @@ impl Watch {
     }
 
     /// What the variant is called.
-    pub fn name(&self) -> &'static str {
+    pub fn name(&self) -> String {
         match self {
-            Watch::Quads {
-                pattern: QuadPattern::Zigzag,
-                ..
-            } => "quads zigzag",
-            Watch::Quads { .. } => "quads alternating",
-            Watch::Parallel => "parallel meshes",
-            Watch::Shading { .. } => "shading",
+            Watch::Quads { pattern, .. } => format!("quads {}", pattern.label()),
+            Watch::Parallel => "parallel meshes".into(),
+            Watch::Shading { .. } => "shading".into(),
         }
     }
 

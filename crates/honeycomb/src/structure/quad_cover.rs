@@ -39,6 +39,16 @@ pub enum QuadPattern {
     Alternating,
 }
 
+impl QuadPattern {
+    /// `zigzag` or `alternating`, as the option is written.
+    pub fn label(self) -> &'static str {
+        match self {
+            QuadPattern::Zigzag => "zigzag",
+            QuadPattern::Alternating => "alternating",
+        }
+    }
+}
+
 impl FromStr for QuadPattern {
     type Err = String;
     fn from_str(s: &str) -> Result<QuadPattern, String> {
