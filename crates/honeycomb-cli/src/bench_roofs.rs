@@ -4,10 +4,11 @@
 //! surface and variant instead: what the variant asks (quad planarity, edge parallelity) and
 //! what it cost (closeness to S, iterations).
 
+use honeycomb::analysis::sun_light;
 use honeycomb::generate::{design_surface, Shape};
 use honeycomb::mesh::{read_mesh, validate_base_mesh, PolyMesh};
 use honeycomb::structure::QuadPattern;
-use honeycomb::{pipeline, Outcome, PipelineOptions, Progress, Surface, Variant, Vec3, Walls};
+use honeycomb::{pipeline, Outcome, PipelineOptions, Progress, Surface, Variant, Walls};
 use honeycomb::{Error, Result};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -46,20 +47,13 @@ const VARIANTS: [&str; 5] = [
     "sun 60/45",
 ];
 
-/// The direction the light of a sun `elevation` degrees high at `azimuth` degrees (counted
-/// from +x towards +y) travels in.
-fn sun(elevation: f64, azimuth: f64) -> Vec3 {
-    let (e, a) = (elevation.to_radians(), azimuth.to_radians());
-    -Vec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
-}
-
 fn variant(name: &str) -> Variant {
     match name {
         "sun 30/225" | "sun 60/45" => Variant::Shading {
             light: if name == "sun 30/225" {
-                sun(30.0, 225.0)
+                sun_light(30.0, 225.0)
             } else {
-                sun(60.0, 45.0)
+                sun_light(60.0, 45.0)
             },
             sun_path: Vec::new(),
             w_axes: None,

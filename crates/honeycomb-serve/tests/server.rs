@@ -777,11 +777,9 @@ fn a_design_surface_keeps_its_variant_in_view() {
     server.stop();
 
     // Shading: the light share before and after, through the walls as they stand.
-    // A sun 45 degrees high from azimuth 200.
-    let light = [0.664, 0.242, -0.707];
     let server = start_with(
         Variant::Shading {
-            light: honeycomb::Vec3::from_slice(&light),
+            light: honeycomb::analysis::sun_light(45.0, 200.0),
             sun_path: Vec::new(),
             w_axes: None,
         },

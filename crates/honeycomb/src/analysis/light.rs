@@ -310,6 +310,13 @@ impl WallTriangle {
     }
 }
 
+/// The direction the light of a sun `elevation` degrees above the horizon (the xy plane, z
+/// up) travels in, the sun standing at `azimuth` degrees, counted from +x towards +y.
+pub fn sun_light(elevation: f64, azimuth: f64) -> Vec3 {
+    let (e, a) = (elevation.to_radians(), azimuth.to_radians());
+    -Vec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,7 +6,7 @@ mod shading;
 mod spherical_area;
 mod spherical_image;
 
-pub use light::{light_share, read_directions, LightShare, DEFAULT_LIGHT_SAMPLES};
+pub use light::{light_share, read_directions, sun_light, LightShare, DEFAULT_LIGHT_SAMPLES};
 pub use shading::{
     extruded_along_normals, shading_against_normals, shading_report, LightComparison,
     ShadingReport, Shares, SHADING_DEPTH, SHADING_GOAL,

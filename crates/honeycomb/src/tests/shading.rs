@@ -1,19 +1,12 @@
 //! Shading (paper section 4, Fig. 18) from a design surface in one call: walls across S turned
 //! across the light, measured on the written meshes against the same cells along S's normals.
 
-use crate::analysis::{extruded_along_normals, light_share, SHADING_DEPTH};
+use crate::analysis::{extruded_along_normals, light_share, sun_light as sun, SHADING_DEPTH};
 use crate::generate::{design_surface, Shape};
 use crate::mesh::validate_base_mesh;
 use crate::structure::{measure, Honeycomb};
 use crate::surface::Surface;
 use crate::{pipeline, Outcome, PipelineOptions, Progress, Variant, Vec3, Walls};
-
-/// The direction the light of a sun `elevation` degrees high, from `azimuth` degrees, travels
-/// in.
-fn sun(elevation: f64, azimuth: f64) -> Vec3 {
-    let (e, a) = (elevation.to_radians(), azimuth.to_radians());
-    -Vec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin())
-}
 
 fn shaded(surface: &Surface, cells: usize, light: Vec3, sun_path: Vec<Vec3>) -> Outcome {
     let mut options = PipelineOptions::new(cells);
