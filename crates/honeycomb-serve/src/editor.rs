@@ -140,12 +140,17 @@ impl Editor {
         loop {
             let outcome = match EditSession::new(Arc::clone(&current.ws), self.options.clone()) {
                 Ok(mut session) => {
-                    self.broadcast(self.mesh(&current));
-                    self.broadcast(self.state(&session, &current, &Progress::new()));
-                    // Serving starts after these went out (to pages of an earlier session
-                    // only): a page that connects hears its own copies, and no stale one after.
-                    if let Some(r) = ready.take() {
-                        let _ = r.send(Ok(()));
+                    match ready.take() {
+                        // Serving starts now: every page hears the mesh and the state when it
+                        // says hello, once.
+                        Some(r) => {
+                            let _ = r.send(Ok(()));
+                        }
+                        // A load or a remake: the pages already there hear the new ones.
+                        None => {
+                            self.broadcast(self.mesh(&current));
+                            self.broadcast(self.state(&session, &current, &Progress::new()));
+                        }
                     }
                     match self.edit(&mut session, &current) {
                         Next::Load(next) => Ok(next),
