@@ -69,6 +69,26 @@ fn browser_at_hand() -> bool {
     false
 }
 
+/// The findings of `web/e2e/SCRIPT` run on the page at `url`, its screenshots into `shots`
+/// (emptied first; they stay after the test, to look at). A failed check fails the test.
+fn browse(script: &str, url: &str, shots: &Path) -> serde_json::Value {
+    let _ = std::fs::remove_dir_all(shots);
+    std::fs::create_dir_all(shots).unwrap();
+    println!("screenshots in {}", shots.display());
+    let out = Command::new("node")
+        .arg(Path::new("e2e").join(script))
+        .arg(url)
+        .arg(shots)
+        .current_dir(repo().join("web"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    println!("{stdout}{stderr}");
+    assert!(out.status.success(), "the browser test failed: {stderr}");
+    serde_json::from_str(stdout.trim()).unwrap()
+}
+
 #[test]
 fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
     if !browser_at_hand() {
@@ -94,21 +114,7 @@ fn browser_drags_a_node_axis_and_sees_a_honeycomb() {
     // The screenshots stay after the test, to look at: editor.png, drag-axis.png and
     // slide-warning.png in the system's temporary folder.
     let shots = std::env::temp_dir().join("honeycomb-e2e-serve");
-    let _ = std::fs::remove_dir_all(&shots);
-    std::fs::create_dir_all(&shots).unwrap();
-    println!("screenshots in {}", shots.display());
-    let out = Command::new("node")
-        .arg("e2e/drag-axis.mjs")
-        .arg(&url)
-        .arg(&shots)
-        .current_dir(repo().join("web"))
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    println!("{stdout}{stderr}");
-    assert!(out.status.success(), "the browser test failed: {stderr}");
-    let findings: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    let findings = browse("drag-axis.mjs", &url, &shots);
     assert!(findings["omega_after"].as_f64().unwrap() < 0.05);
     assert!(findings["moved"].as_f64().unwrap() > 1e-3);
     assert!(findings["error_shown"]
@@ -165,20 +171,7 @@ fn browser_shows_the_variant_of_a_design_surface() {
     let mut url = String::new();
     BufReader::new(stdout).read_line(&mut url).unwrap();
     let shots = std::env::temp_dir().join("honeycomb-e2e-serve-variant");
-    let _ = std::fs::remove_dir_all(&shots);
-    std::fs::create_dir_all(&shots).unwrap();
-    let out = Command::new("node")
-        .arg("e2e/variant.mjs")
-        .arg(url.trim())
-        .arg(&shots)
-        .current_dir(repo().join("web"))
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    println!("{stdout}{stderr}");
-    assert!(out.status.success(), "the browser test failed: {stderr}");
-    let findings: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    let findings = browse("variant.mjs", url.trim(), &shots);
     for row in [&findings["first"], &findings["after"]] {
         assert_eq!(row["hidden"], false);
         assert_eq!(row["name"], "quads alternating");
