@@ -142,7 +142,7 @@ def pipeline(
     method: str = "flatten",
     flatten: Optional[str] = None,
     boundary: str = "trim",
-    align: str = "boundary",
+    align: Optional[str] = None,
     seed: int = 0,
     progress: Optional[ProgressCallback] = None,
     **options: Any,
@@ -152,7 +152,9 @@ def pipeline(
     ``walls``: "across" (node axes as close to the surface's normals as a honeycomb allows),
     "uniform" (along its mean normal), "free", or one direction (x, y, z) for every axis.
     ``cells``: about this many cells, or ``edge_length`` in model units. ``method``:
-    "flatten" or "field". ``options``: the options of ``honeycomb optimize`` by their field
+    "flatten" or "field". ``align``: "boundary", "curvature" (an edge direction along the
+    surface's principal directions where they agree), "none" or a polyline file (default:
+    "boundary", "curvature" with zigzag quads). ``options``: the options of ``honeycomb optimize`` by their field
     names (``w_fair=0`` for ``--w-fair 0``): iterations, eps, tolerance, thickness, min_edge,
     w_angle, w_cons, w_norm, w_close, w_boundary, w_fair, w_guide, wall_normals, variant.
     A bad one raises ValueError naming it. Releases the GIL; Ctrl-C raises

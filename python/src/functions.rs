@@ -19,14 +19,14 @@ use std::path::PathBuf;
 /// "across", "uniform", "free" or a direction (x, y, z) for every node axis. `cells`:
 /// about this many cells (or `edge_length` in model units); `method`: "flatten" or "field";
 /// `flatten`: "arap", "lscm" or "project" (default: the pipeline's choice); `boundary`:
-/// "trim" or "keep" the cells S's border cuts; `align`: "boundary", "none" or a polyline
-/// file of strokes; `seed` shifts the lattice (as `honeycomb pipeline`'s flags). Other keyword arguments are the options of `honeycomb
+/// "trim" or "keep" the cells S's border cuts; `align`: "boundary", "curvature", "none" or a
+/// polyline file of strokes (default: "boundary", "curvature" for zigzag quads); `seed` shifts the lattice (as `honeycomb pipeline`'s flags). Other keyword arguments are the options of `honeycomb
 /// optimize` by their field names (`w_fair` for `--w-fair`). `progress(step: dict)` is
 /// called at every step; returning False stops the work (`honeycomb.Cancelled`).
 #[pyfunction]
 #[pyo3(
-    signature = (surface, cells=1500, walls=None, *, edge_length=None, method="flatten", flatten=None, boundary="trim", align="boundary", seed=0, progress=None, **options),
-    text_signature = "(surface, cells=1500, walls='across', *, edge_length=None, method='flatten', flatten=None, boundary='trim', align='boundary', seed=0, progress=None, **options)"
+    signature = (surface, cells=1500, walls=None, *, edge_length=None, method="flatten", flatten=None, boundary="trim", align=None, seed=0, progress=None, **options),
+    text_signature = "(surface, cells=1500, walls='across', *, edge_length=None, method='flatten', flatten=None, boundary='trim', align=None, seed=0, progress=None, **options)"
 )]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pipeline(
@@ -38,7 +38,7 @@ pub(crate) fn pipeline(
     method: &str,
     flatten: Option<&str>,
     boundary: &str,
-    align: &str,
+    align: Option<&str>,
     seed: u64,
     progress: Option<Py<PyAny>>,
     options: Option<&Bound<'_, PyDict>>,
@@ -70,9 +70,10 @@ pub(crate) fn pipeline(
     init.boundary = boundary
         .parse::<BoundaryMode>()
         .map_err(|m| named("boundary", m))?;
-    init.align = Align::parse(align).map_err(py_err)?;
+    init.align = Align::parse(align.unwrap_or("boundary")).map_err(py_err)?;
     init.seed = seed;
     pipeline_options.init_chosen = flatten.is_some() || init.method == Method::Field;
+    pipeline_options.align_chosen = align.is_some();
     pipeline_options.options = options;
     let surface = mesh_arg(py, "surface", surface)?;
     let surface = py.detach(|| surface_of(surface)).map_err(py_err)?;

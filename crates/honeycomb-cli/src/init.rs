@@ -26,10 +26,13 @@ pub struct InitArgs {
     /// hex edges follow a smooth 6-fold direction field; boundary cells trimmed).
     #[arg(long, default_value = "flatten")]
     pub method: Method,
-    /// `boundary`: hex edges follow the surface's boundary; `none`; or an OBJ file of
-    /// polylines (`l` records) the hex edges should follow.
-    #[arg(long, default_value = "boundary")]
-    pub align: String,
+    /// `boundary`: hex edges follow the surface's boundary; `curvature`: one edge direction
+    /// follows its principal curvature directions where they agree over most of it (else the
+    /// boundary), so that zigzag quads along it are flattest; `none`; or an OBJ file of
+    /// polylines (`l` records) the hex edges should follow [default: boundary; pipeline
+    /// --quads zigzag: curvature].
+    #[arg(long)]
+    pub align: Option<String>,
     /// `trim`: drop cells the boundary cuts; `keep`: close them against the boundary.
     #[arg(long, default_value = "trim")]
     pub boundary: BoundaryMode,
@@ -59,7 +62,7 @@ impl InitArgs {
                     .into(),
             ));
         }
-        let align = Align::parse(&self.align)?;
+        let align = Align::parse(self.align.as_deref().unwrap_or("boundary"))?;
         let options = InitOptions {
             size,
             method: self.method,
@@ -179,6 +182,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     let options = PipelineOptions {
         init,
         init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,
+        align_chosen: args.init.align.is_some(),
         options: args.opts.options()?,
     };
     let output = args.opts.output();
@@ -186,7 +190,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
     // The pipeline checks it too; here it is refused before -o's parents are made.
     check_solve_cells(&options.init, &surface).map_err(|e| e.about_file(&args.surface))?;
     let surface = Surface::new(surface).map_err(|e| e.about_file(&args.surface))?;
-    let strokes = Path::new(&args.init.align);
+    let strokes = Path::new(args.init.align.as_deref().unwrap_or(""));
     let mut inputs = vec![args.surface.as_path()];
     if strokes.is_file() {
         inputs.push(strokes);

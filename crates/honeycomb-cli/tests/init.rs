@@ -114,6 +114,35 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     assert_eq!(initial.faces, base.faces);
 }
 
+/// Zigzag quads turn the grid to follow S's principal directions unless --align says otherwise
+/// (init.json says what the grid follows); the plain honeycomb follows the boundary.
+#[test]
+fn pipeline_turns_the_grid_of_zigzag_quads_along_the_principal_directions() {
+    let tmp = TempDir::new("pipeline_align");
+    let saddle = surface_file(&tmp, "saddle");
+    for (name, extra, follows) in [
+        ("zigzag", &["--quads", "zigzag"][..], "curvature"),
+        (
+            "zigzag_boundary",
+            &["--quads", "zigzag", "--align", "boundary"][..],
+            "boundary",
+        ),
+        ("plain", &[][..], "boundary"),
+    ] {
+        let dir = tmp.join(name);
+        let mut args = vec!["pipeline", saddle.to_str().unwrap(), "--cells", "300", "-o"];
+        args.push(dir.to_str().unwrap());
+        args.extend(extra);
+        let out = run(args);
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        assert_eq!(
+            read_json(&dir, "init.json")["lattice_follows"],
+            follows,
+            "{name}"
+        );
+    }
+}
+
 /// Without --flatten, pipeline picks the grid for the walls asked: ARAP for walls across S (the
 /// default), the plan view for uniform walls (the dome: a honeycomb with parallel axes from the
 /// start), which falls back to ARAP where S folds over seen from above (a vault closing past
@@ -240,6 +269,19 @@ fn bad_surfaces_and_options_are_named() {
         &surface,
         &["--cells", "100", "--boundary", "cut"],
         &["cut", "trim or keep"],
+    );
+    init_fails(
+        &tmp,
+        &surface,
+        &[
+            "--cells",
+            "100",
+            "--method",
+            "field",
+            "--align",
+            "curvature",
+        ],
+        &["--align curvature", "--method flatten"],
     );
     let missing = tmp.join("strokes.obj");
     init_fails(

@@ -4,7 +4,7 @@ use super::options::Shading;
 use super::{BaseMesh, Options, Outcome, Progress, Step, Variant, Verdict};
 use crate::analysis::{shading_against_normals, SHADING_DEPTH};
 use crate::error::{Error, Result};
-use crate::init::{CellSize, InitOptions};
+use crate::init::{Align, CellSize, InitOptions, Method};
 use crate::mesh::check_base_near_surface;
 use crate::optimize::{
     capped, optimize as solve, paired, OptimizeOptions, Optimized, ParallelOptions, QuadOptions,
@@ -12,7 +12,7 @@ use crate::optimize::{
 use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Strategy, Walls};
 use crate::reciprocal::{AcrossOptions, AxisTargets, SHADING_TILTS};
 use crate::report::Report;
-use crate::structure::{axes_measures, face_measures, measure};
+use crate::structure::{axes_measures, face_measures, measure, QuadPattern};
 use crate::surface::Surface;
 use crate::Vec3;
 use std::time::Instant;
@@ -26,6 +26,10 @@ pub struct PipelineOptions {
     /// `init.method` and `init.flattener` are the caller's choice; else the pipeline picks
     /// them for the walls asked (and may turn the grid or change method to get a honeycomb).
     pub init_chosen: bool,
+    /// `init.align` is the caller's choice; else zigzag quads turn the lattice to follow S's
+    /// principal directions where they agree (the straight polylines then carry the flattest
+    /// quads), and the boundary everywhere else.
+    pub align_chosen: bool,
     pub options: Options,
 }
 
@@ -35,6 +39,7 @@ impl PipelineOptions {
         PipelineOptions {
             init: InitOptions::new(CellSize::Cells(cells)),
             init_chosen: false,
+            align_chosen: false,
             options: Options::default(),
         }
     }
@@ -70,8 +75,19 @@ impl PipelineOptions {
         if self.options.paired_parallel()?.is_some() {
             optimize.parallel = None;
         }
+        let mut init = self.init.clone();
+        let zigzag = matches!(
+            self.options.variant,
+            Variant::Quads {
+                pattern: QuadPattern::Zigzag,
+                ..
+            }
+        );
+        if zigzag && !self.align_chosen && init.method == Method::Flatten {
+            init.align = Align::Curvature;
+        }
         Ok(Strategy {
-            init: self.init.clone(),
+            init,
             init_chosen: self.init_chosen,
             walls: self.options.walls,
             optimize,

@@ -17,6 +17,7 @@ pub mod field;
 mod flatten;
 mod lattice;
 mod locate;
+mod principal;
 mod strokes;
 
 pub use flatten::{flatten, flatten_viewed, Distortion, Flattener, Flattening, Point2};
@@ -93,13 +94,19 @@ pub enum Align {
     Boundary,
     /// Its edges follow these polylines on S (the paper's user strokes).
     Strokes(Vec<Vec<Vec3>>),
+    /// One of its edge directions follows S's principal curvature directions as well as one
+    /// direction can: the long diagonals along it split the cells into the flattest quads
+    /// (see `principal.rs`).
+    Curvature,
 }
 
 impl Align {
-    /// `boundary`, `none`, or the path of a polyline file of strokes ([`read_strokes`]).
+    /// `boundary`, `curvature`, `none`, or the path of a polyline file of strokes
+    /// ([`read_strokes`]).
     pub fn parse(text: &str) -> Result<Align> {
         match text {
             "boundary" => Ok(Align::Boundary),
+            "curvature" => Ok(Align::Curvature),
             "none" => Ok(Align::None),
             path => read_strokes(std::path::Path::new(path))
                 .map(Align::Strokes)
@@ -107,12 +114,24 @@ impl Align {
                     Error::Io { path, source } => Error::option(
                         "align",
                         path.display(),
-                        format!("expected boundary, none or a polyline file ({source})"),
+                        format!("expected boundary, curvature, none or a polyline file ({source})"),
                     ),
                     e => e,
                 }),
         }
     }
+}
+
+/// What a flattened lattice's edges follow (`init.json`'s `lattice_follows`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum LatticeFollows {
+    /// Nothing: as the flattening leaves it (asked, or no direction was preferred).
+    None,
+    Boundary,
+    /// S's principal curvature directions.
+    Curvature,
+    Strokes,
 }
 
 /// What happens to cells that S's boundary cuts.
@@ -197,6 +216,8 @@ pub struct FlatteningReport {
     pub flattener: Flattener,
     /// The lattice's rotation in the flattened plane (degrees).
     pub lattice_angle_deg: f64,
+    /// What the lattice's edges were turned to follow.
+    pub lattice_follows: LatticeFollows,
     /// How far the flattening is from an isometry.
     pub flattening: Distortion,
     /// Triangles of S that the flattening turned over (0 for a good flattening).
@@ -578,7 +599,7 @@ fn lay_lattice(
             fits,
         )));
     }
-    let angle = lattice_angle(options, vertices, triangles, &flat.points)?;
+    let (angle, follows) = lattice_angle(options, vertices, triangles, &flat.points)?;
     let lattice = Lattice {
         edge,
         angle,
@@ -672,6 +693,7 @@ fn lay_lattice(
         Some(FlatteningReport {
             flattener: flat.flattener,
             lattice_angle_deg: angle.to_degrees(),
+            lattice_follows: follows,
             flattening: flat.distortion.clone(),
             flipped_triangles: flat.flipped,
         }),
@@ -695,6 +717,13 @@ fn init_field(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Resu
         Align::Strokes(lines) => (lines, true),
         Align::Boundary => (&[], true),
         Align::None => (&[], false),
+        Align::Curvature => {
+            return Err(Error::Parameter(
+                "--align curvature turns the flattened lattice (--method flatten); --method \
+                 field follows the boundary, strokes or nothing"
+                    .into(),
+            ))
+        }
     };
     let base = field::field_hex_mesh(surface, edge, strokes, follow_boundary, options.seed)?;
     let conn = validate_base_mesh(&base)?;
@@ -702,22 +731,31 @@ fn init_field(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Resu
     Ok(Initialized { base, report })
 }
 
-/// The rotation that makes the lattice's edges follow the boundary or the strokes.
+/// The rotation that makes the lattice's edges follow the boundary, S's principal directions
+/// or the strokes, and what they follow.
 fn lattice_angle(
     options: &InitOptions,
     vertices: &[Vec3],
     triangles: &[[usize; 3]],
     points: &[Point2],
-) -> Result<f64> {
+) -> Result<(f64, LatticeFollows)> {
     // Lattice edges run at 30, 90 and 150 degrees before rotation: turn 30 degrees less.
     let edge_direction = std::f64::consts::FRAC_PI_6;
-    let mean = match &options.align {
-        Align::None => return Ok(options.turn),
-        Align::Boundary => sixfold_mean(
+    let boundary = || {
+        sixfold_mean(
             flatten::boundary_half_edges(triangles)
                 .into_iter()
                 .map(|[a, b]| (points[a], points[b])),
-        ),
+        )
+    };
+    let (mean, follows) = match &options.align {
+        Align::None => return Ok((options.turn, LatticeFollows::None)),
+        Align::Boundary => (boundary(), LatticeFollows::Boundary),
+        // Where S's principal directions do not agree, the boundary's.
+        Align::Curvature => match principal::least_twist_direction(vertices, triangles, points) {
+            Some(direction) => (Some(direction), LatticeFollows::Curvature),
+            None => (boundary(), LatticeFollows::Boundary),
+        },
         Align::Strokes(lines) => {
             // Each stroke point goes where its nearest vertex of S went.
             let nearest = |p: Vec3| {
@@ -745,10 +783,13 @@ fn lattice_angle(
                         .into(),
                 ));
             }
-            mean
+            (mean, LatticeFollows::Strokes)
         }
     };
-    Ok(mean.map_or(0.0, |m| m - edge_direction) + options.turn)
+    match mean {
+        Some(m) => Ok((m - edge_direction + options.turn, follows)),
+        None => Ok((options.turn, LatticeFollows::None)),
+    }
 }
 
 /// A pseudo-random shift of the lattice within one cell (splitmix64 of the seed).

@@ -20,7 +20,7 @@ mod walls;
 pub use walls::Walls;
 
 use crate::error::{rounded, short_vector, Error, Result};
-use crate::init::{init, Flattener, InitOptions, Initialized, Method};
+use crate::init::{init, Align, Flattener, InitOptions, Initialized, Method};
 use crate::mesh::{validate_surface_mesh, PolyMesh};
 use crate::optimize::{
     optimize, optimize_made_mesh, Attempt, AxesOptions, Frame, OptimizeOptions, Optimized,
@@ -307,10 +307,16 @@ fn base_mesh(
                     notes.push(format!(
                         "{why}; this is the field-aligned mesh (--method field)"
                     ));
+                    // The field has no principal directions to follow: the boundary then.
+                    let align = match &init_options.align {
+                        Align::Curvature => Align::Boundary,
+                        align => align.clone(),
+                    };
                     init(
                         surface,
                         &InitOptions {
                             method: Method::Field,
+                            align,
                             ..init_options.clone()
                         },
                     )?
