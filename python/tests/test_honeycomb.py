@@ -82,6 +82,18 @@ def test_the_pipeline_takes_the_base_mesh_options_of_the_cli(surface):
     assert abs(len(chosen.faces) / 150 - 1) < 0.25
 
 
+def test_zigzag_quads_follow_the_principal_directions(surface):
+    # The saddle twists least along x and y: the default grid of zigzag quads follows them,
+    # and its quads come out far flatter than on the grid along the boundary.
+    quads = {"kind": "quads", "pattern": "zigzag"}
+    along = honeycomb.pipeline(surface, cells=CELLS, variant=quads)
+    boundary = honeycomb.pipeline(surface, cells=CELLS, variant=quads, align="boundary")
+    assert along.is_honeycomb and boundary.is_honeycomb
+    flat, bent = along.report["delta_face_avg"], boundary.report["delta_face_avg"]
+    assert flat < 0.3 * bent, (flat, bent)
+    assert along.report["delta_face_max"] <= 0.01
+
+
 def test_lists_paths_and_arrays_give_the_same_result(surface, result, tmp_path):
     vertices, faces = surface
     as_lists = honeycomb.pipeline((vertices.tolist(), faces.tolist()), cells=CELLS)

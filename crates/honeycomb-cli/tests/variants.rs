@@ -167,6 +167,11 @@ fn shading_reports_the_light_before_and_after_per_direction() {
         notes.contains("guided projection") && notes.contains("made it exact"),
         "{notes}"
     );
+    // Its axes are measured against those it was given: S's normals turned wholly across the
+    // light (not the walls-across tries' targets, turned at most 45 degrees).
+    assert_eq!(report["walls"], "free");
+    let off = number(&report, "axes_angle_avg_deg");
+    assert!(off < 10.0, "axes {off} degrees off those prescribed");
 
     let thin = tmp.join("thin");
     let output = run_demo(&thin, &[&light[..], &["--thickness", "0.05"]].concat());

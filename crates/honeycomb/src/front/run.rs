@@ -7,7 +7,8 @@ use crate::error::{Error, Result};
 use crate::init::{Align, CellSize, InitOptions, Method};
 use crate::mesh::check_base_near_surface;
 use crate::optimize::{
-    capped, optimize as solve, paired, OptimizeOptions, Optimized, ParallelOptions, QuadOptions,
+    capped, optimize as solve, paired, shading_axes, OptimizeOptions, Optimized, ParallelOptions,
+    QuadOptions,
 };
 use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Strategy, Walls};
 use crate::reciprocal::{AcrossOptions, AxisTargets, SHADING_TILTS};
@@ -269,9 +270,19 @@ fn shade(
         shading.light,
         &shading.sun_path,
     );
-    let axes: Vec<Vec3> = (deep.base.vertices.iter())
-        .map(|&v| targets.at(surface.normal_at(v)))
-        .collect();
+    // What the kept axes were asked to follow: the sheet's targets, or, from the guided
+    // projection, the axes it was given (S's normals turned wholly across the light).
+    let fitted = || {
+        (deep.base.vertices.iter())
+            .map(|&v| targets.at(surface.normal_at(v)))
+            .collect()
+    };
+    let axes: Vec<Vec3> = match report.walls {
+        Walls::Free => {
+            shading_axes(surface, &deep.base.vertices, shading.light).unwrap_or_else(|_| fitted())
+        }
+        _ => fitted(),
+    };
     report.deepened(&deep, &measure(&deep, surface), light);
     report.axes = Some(axes_measures(&deep, &axes));
     optimized.honeycomb = deep;
