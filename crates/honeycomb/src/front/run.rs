@@ -96,6 +96,7 @@ impl PipelineOptions {
             second_try: self.options.w_fair.is_none(),
             // Shading sets the axes' targets per try (see `shading_pipeline`).
             across: AcrossOptions::default(),
+            guided_fallback: true,
         })
     }
 }
@@ -140,7 +141,7 @@ pub fn optimize(
         let mut guided_ran = false;
         return shading_tries(&tries, progress, |shading_try, progress| {
             if shading_try == ShadingTry::Prescribed && guided_ran {
-                return Ok(None);
+                return Ok(Tried::Skipped);
             }
             let (walls, targets) = match shading_try {
                 ShadingTry::Turned(tilt) => (options.walls, shading.targets(tilt)),
@@ -168,7 +169,12 @@ pub fn optimize(
                 None => (solved.optimized, solved.report),
             };
             let (optimized, report) = shade(optimized, report, surface, shading, targets);
-            Ok(Some(outcome(optimized, report, solved.base, None)))
+            Ok(Tried::Made(Box::new(outcome(
+                optimized,
+                report,
+                solved.base,
+                None,
+            ))))
         });
     }
     let (optimized, report) = if solver_options.is_variant() {
@@ -354,6 +360,9 @@ pub fn pipeline(
 }
 
 /// The pipeline's shading device (see [`shading_tries`]), each try from a base mesh of its own.
+/// Where walls across give no clean honeycomb, a try ends in the guided projection of the
+/// same grid, which does not depend on the turn: it runs once, and a later try keeps its
+/// walls as they came (or fails, saying why).
 fn shading_pipeline(
     surface: &Surface,
     mut strategy: Strategy,
@@ -367,14 +376,19 @@ fn shading_pipeline(
         };
         let targets = shading.targets(tilt);
         strategy.across.targets = targets;
-        let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
+        let made = match run_strategy(surface, &strategy, &mut |step| progress.step(step)) {
+            Ok(made) => made,
+            Err(Error::Solver(why)) if !strategy.guided_fallback => return Ok(Tried::Failed(why)),
+            Err(e) => return Err(e),
+        };
+        strategy.guided_fallback &= made.report.walls != Walls::Free;
         let (optimized, report) = shade(made.optimized, made.report, surface, shading, targets);
-        Ok(Some(outcome(
+        Ok(Tried::Made(Box::new(outcome(
             optimized,
             report,
             made.base,
             Some(made.initialized.report),
-        )))
+        ))))
     })
 }
 
@@ -405,13 +419,22 @@ impl std::fmt::Display for ShadingTry {
     }
 }
 
-/// A shading device: each of `tries` in turn (`shaded` makes one, or `None` for a try that
-/// would repeat an earlier one), until one is a honeycomb that blocks enough; else the one
-/// that blocks most. Notes say what the other tries fell short of.
+/// What a try at a shading device gave.
+enum Tried {
+    Made(Box<Outcome>),
+    /// Nothing: the try would repeat an earlier one.
+    Skipped,
+    /// No honeycomb, for this reason.
+    Failed(String),
+}
+
+/// A shading device: each of `tries` in turn (`shaded` makes one), until one is a honeycomb
+/// that blocks enough; else the one that blocks most. Notes say what the other tries fell
+/// short of.
 fn shading_tries(
     tries: &[ShadingTry],
     progress: &mut Progress,
-    mut shaded: impl FnMut(ShadingTry, &mut Progress) -> Result<Option<Outcome>>,
+    mut shaded: impl FnMut(ShadingTry, &mut Progress) -> Result<Tried>,
 ) -> Result<Outcome> {
     let start = Instant::now();
     // Not a honeycomb last, then by the share let through against the reference's.
@@ -426,8 +449,13 @@ fn shading_tries(
     // What each try fell short of.
     let (mut short, mut spent) = (Vec::new(), 0);
     for &this in tries {
-        let Some(out) = shaded(this, progress)? else {
-            continue;
+        let out = match shaded(this, progress)? {
+            Tried::Made(out) => *out,
+            Tried::Skipped => continue,
+            Tried::Failed(why) => {
+                short.push((this, why));
+                continue;
+            }
         };
         spent += out.report.iterations_total;
         let met = out.verdict.honeycomb && out.verdict.unmet.is_none();
@@ -446,7 +474,13 @@ fn shading_tries(
             break;
         }
     }
-    let (mut out, kept) = best.expect("a try ran");
+    let Some((mut out, kept)) = best else {
+        let whys: Vec<String> = short.iter().map(|(t, why)| format!("{t}: {why}")).collect();
+        return Err(Error::Solver(format!(
+            "no try gave a shading device ({})",
+            whys.join("; ")
+        )));
+    };
     for (other, unmet) in short.iter().filter(|(other, _)| *other != kept) {
         out.report.notes.push(format!("{other}: {unmet}"));
     }
@@ -479,5 +513,28 @@ fn outcome(
         report,
         base,
         initialized,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Tries that give no honeycomb end in one error that names each and why.
+    #[test]
+    fn shading_tries_that_all_fail_are_named() {
+        let tries = SHADING_TILTS.map(ShadingTry::Turned);
+        let err = shading_tries(&tries, &mut Progress::silent(), |t, _| {
+            Ok(match t {
+                ShadingTry::Turned(tilt) if tilt < 0.6 => Tried::Skipped,
+                _ => Tried::Failed("a node mirrored".into()),
+            })
+        })
+        .err()
+        .expect("no try made anything")
+        .to_string();
+        assert!(err.contains("at most 45 degrees: a node mirrored"), "{err}");
+        assert!(err.contains("at most 60 degrees: a node mirrored"), "{err}");
+        assert!(!err.contains("30 degrees"), "{err}");
     }
 }

@@ -48,6 +48,10 @@ pub struct Strategy {
     /// caller's choice).
     pub second_try: bool,
     pub across: AcrossOptions,
+    /// Where walls across S give no clean honeycomb on the last base mesh, the guided
+    /// projection of that mesh (else the unclean walls across if they are a honeycomb, or
+    /// an error saying why there is none).
+    pub guided_fallback: bool,
 }
 
 /// What the pipeline made.
@@ -164,6 +168,10 @@ pub fn pipeline(
             last,
             progress,
         )?;
+        let solved = match solved {
+            Err((why, _)) if last => return Err(Error::Solver(format!("{what}: {why}"))),
+            solved => solved,
+        };
         match solved {
             Ok(mut solved) if solved.report.honeycomb || last => {
                 if k > 0 {
@@ -363,6 +371,9 @@ fn solve_made(
         )? {
             Ok(solved) => return Ok(Ok(solved)),
             Err(not_clean) if !fallback => return Ok(Err((not_clean.why, not_clean.iterations))),
+            Err(not_clean) if !options.guided_fallback => {
+                return Ok(not_clean.into_walls_as_they_came())
+            }
             Err(not_clean) => {
                 let solved = guided(
                     &made.base,
@@ -508,6 +519,20 @@ struct NotClean {
 }
 
 impl NotClean {
+    /// These walls across as they came where they are a honeycomb (a note says what they
+    /// fall short of), else why there is none and the iterations it took.
+    fn into_walls_as_they_came(self) -> std::result::Result<Solved, (String, usize)> {
+        match self.honeycomb {
+            Some(mut across) => {
+                across
+                    .notes
+                    .push(format!("{}; these are the walls as they came", self.why));
+                Ok(across)
+            }
+            None => Err((self.why, self.iterations)),
+        }
+    }
+
     /// The better of `solved` (the guided projection) and these walls across: the guided
     /// projection unless it is no honeycomb and these are (a note says so).
     fn or_better(self, mut solved: Solved) -> Solved {
