@@ -460,9 +460,20 @@ pub fn finish(
             None => Ok(()),
         };
     };
+    // A shading device that no try made a honeycomb of: the light and the share of the
+    // closest, then why it is none.
+    let device = report.shading.as_ref().map_or(String::new(), |s| {
+        format!(
+            "no try made a shading device for light {}: the best try lets through {} of the \
+             direct light, against {} for the same cells along S's normals, and ",
+            honeycomb::error::short_vector(honeycomb::Vec3::from_slice(&s.light.direction)),
+            rounded(s.light.after, 3),
+            rounded(s.light.before, 3)
+        )
+    });
     Err(Error::Solver(format!(
-        "the result is {why}; the outputs in {} are for inspection. More --iterations or a \
-         larger --eps may help{}{}{}",
+        "{device}the result is {why}; the outputs in {} are for inspection. More --iterations \
+         or a larger --eps may help{}{}{}",
         dir.display(),
         // Chosen, not asked for, and not already followed by a solve per edge (pipeline):
         // the other formulation takes another path.

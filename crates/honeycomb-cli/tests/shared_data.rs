@@ -205,3 +205,41 @@ fn field_pipeline_tries_the_next_seed() {
     assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
     assert_eq!(number(&report, "nonconvex_walls"), 0.0, "{report}");
 }
+
+/// A light no try makes a shading device for (Yas Island, a low sun from +x: the walls turned
+/// across it give no clean honeycomb on any grid, nor does the guided projection): one error
+/// naming the light and the share of the best try, the outputs aside in DIR.failed.
+#[test]
+fn a_light_no_try_meets_is_named_with_its_best_share() {
+    let Some(data) = shared_data() else {
+        println!("skipping: ../shared/data not found");
+        return;
+    };
+    let dir = TempDir::new("shared-light");
+    let out = dir.join("out");
+    let input = data.join("YasIsland.off");
+    let output = run([
+        "pipeline",
+        input.to_str().unwrap(),
+        "--cells",
+        "750",
+        "--light",
+        "-0.866025,0,-0.5",
+        "-q",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+    let err = stderr(&output);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("light -0.866,0,-0.5") && err.contains("lets through"),
+        "{err}"
+    );
+    let failed = dir.join("out.failed");
+    let report = read_json(&failed, "report.json");
+    let shading = &report["shading"]["light"];
+    let best = format!("{}", (number(shading, "after") * 1000.0).round() / 1000.0);
+    assert!(err.contains(&best), "{best} not in {err}");
+    assert!(!out.exists());
+}
