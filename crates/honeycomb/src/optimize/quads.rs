@@ -14,8 +14,10 @@ use crate::constraints::{
 use crate::error::{Error, Result};
 use crate::geometry::{smallest_eigenvector, sum_of_outer_products, Vec3};
 use crate::mesh::{Connectivity, PolyMesh};
-use crate::solve::{Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolverOptions};
-use crate::structure::{is_convex, Honeycomb, QuadCover};
+use crate::solve::{
+    Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
+};
+use crate::structure::{face_measures, is_convex, Honeycomb, QuadCover};
 use crate::surface::Surface;
 
 #[derive(Clone, Debug)]
@@ -78,6 +80,10 @@ const CLOSENESS_WEIGHTS: [f64; 3] = [0.3, 1.0, 3.0];
 /// How far capping may take a vertex from S, in mean edge lengths.
 const MAX_DISTANCE_FROM_S: f64 = 0.1;
 
+/// A step that changes the quads' largest and mean planarity by less than this has left them
+/// as they are to the digits that delta_face is read to: the capping has settled.
+const SETTLED_PLANARITY: f64 = 1e-5;
+
 /// Every edge stays at least this long (mean edge lengths): a quad with a vanishing side is
 /// a triangle, so planarity pulls at short edges, and where the axes at an edge's ends lean
 /// together a short edge crosses its wall.
@@ -123,7 +129,29 @@ pub(crate) fn cap(
         let (mut x, cover) = (problem.x, problem.cover);
         let mut projection =
             GuidedProjection::with_positions(x.len(), problem.families, Some(&problem.positions))?;
-        let mut solve = projection.solve(&mut x, solver, progress)?;
+        // The planarity rows cannot all vanish (the vertices keep to S within a bound), so the
+        // solve stops once the quads' planarity has settled.
+        let mut state = SolveState::new(solver.eps);
+        let planarity = |x: &[f64]| {
+            let vertices: Vec<Vec3> = (0..layout.num_vertices)
+                .map(|v| layout.vertex_at(x, v))
+                .collect();
+            let m = face_measures(&vertices, &cover.quads);
+            [m.delta_face_max, m.delta_face_avg]
+        };
+        let mut before = planarity(&x);
+        while state.iterations() < solver.max_iterations {
+            let Some(info) = projection.iterate(&mut x, &mut state, solver)? else {
+                break;
+            };
+            progress(&info);
+            let after = planarity(&x);
+            if (0..2).all(|k| (after[k] - before[k]).abs() < SETTLED_PLANARITY) {
+                break;
+            }
+            before = after;
+        }
+        let mut solve = projection.report(&x, state, solver);
         iterations += solve.iterations;
         let vertices: Vec<Vec3> = (0..layout.num_vertices)
             .map(|v| layout.vertex_at(&x, v))
