@@ -6,12 +6,14 @@ use crate::geometry::Vec3;
 
 /// How far shading turns a node axis from S's normal at most (radians), in the order tried:
 /// first so far that the walls lean no more than they stand; then less, where the sheet
-/// cannot follow so far on a doubly curved S; then further, where a high sun's plane across
-/// the light lies beyond the first turn and the walls block too little.
-pub const SHADING_TILTS: [f64; 3] = [
+/// cannot follow so far on a doubly curved S; then further, twice, where a high sun's plane
+/// across the light lies beyond the first turn, or S's steep parts turn it further, and the
+/// walls block too little.
+pub const SHADING_TILTS: [f64; 4] = [
     std::f64::consts::FRAC_PI_4,
     std::f64::consts::FRAC_PI_6,
     std::f64::consts::FRAC_PI_3,
+    5.0 * std::f64::consts::PI / 12.0,
 ];
 
 /// The axis each node is fitted to, from S's unit normal where it stands.
