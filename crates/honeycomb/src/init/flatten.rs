@@ -433,33 +433,38 @@ fn distortion(vertices: &[Vec3], triangles: &[[usize; 3]], points: &[Point2]) ->
     d
 }
 
+/// A triangulated grid of `n` x `n` squares over [0, 1]^2 lifted by `height`,
+/// counter-clockwise from +z: the init tests' surface.
+#[cfg(test)]
+pub(crate) fn lifted_grid(
+    n: usize,
+    height: impl Fn(f64, f64) -> f64,
+) -> (Vec<Vec3>, Vec<[usize; 3]>) {
+    let mut vertices = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+            vertices.push(Vec3::new(x, y, height(x, y)));
+        }
+    }
+    let id = |i: usize, j: usize| j * (n + 1) + i;
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    (vertices, triangles)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A triangulated grid over [0, 1]^2 lifted by `height`, counter-clockwise from +z.
-    fn grid(n: usize, height: impl Fn(f64, f64) -> f64) -> (Vec<Vec3>, Vec<[usize; 3]>) {
-        let mut vertices = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
-                vertices.push(Vec3::new(x, y, height(x, y)));
-            }
-        }
-        let id = |i: usize, j: usize| j * (n + 1) + i;
-        let mut triangles = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        (vertices, triangles)
-    }
-
     #[test]
     fn a_flat_square_is_flattened_onto_itself() {
-        let (vertices, triangles) = grid(10, |_, _| 0.0);
+        let (vertices, triangles) = lifted_grid(10, |_, _| 0.0);
         let f = flatten(&vertices, &triangles, Flattener::Lscm).unwrap();
         // Up to a similarity: all distances kept.
         for (a, b) in [(0, 120), (5, 77), (13, 64)] {
@@ -476,7 +481,7 @@ mod tests {
     #[test]
     fn a_developable_sheet_is_flattened_without_distortion() {
         // A cylinder piece: isometric to the plane, so LSCM finds (nearly) the isometry.
-        let (vertices, triangles) = grid(30, |x, _| (1.0 - (x - 0.5).powi(2)).sqrt());
+        let (vertices, triangles) = lifted_grid(30, |x, _| (1.0 - (x - 0.5).powi(2)).sqrt());
         let f = flatten(&vertices, &triangles, Flattener::Lscm).unwrap();
         assert!(f.distortion.length_scale_cv < 0.01, "{:?}", f.distortion);
         assert!(f.distortion.conformal_avg < 1.01, "{:?}", f.distortion);
@@ -484,7 +489,7 @@ mod tests {
 
     #[test]
     fn a_dome_keeps_angles_and_reports_its_area_distortion() {
-        let (vertices, triangles) = grid(30, |x, y| {
+        let (vertices, triangles) = lifted_grid(30, |x, y| {
             (4.0 - (x - 0.5).powi(2) - (y - 0.5).powi(2)).sqrt()
         });
         let f = flatten(&vertices, &triangles, Flattener::Lscm).unwrap();

@@ -97,25 +97,11 @@ fn second_fundamental_form(p: [Vec3; 3], n: [Vec3; 3], u: [Point2; 3]) -> Option
 mod tests {
     use super::*;
 
-    /// A height field sampled on a grid, flattened by dropping z.
+    /// A height field over [-1/2, 1/2]^2, flattened by dropping z.
     fn grid(height: impl Fn(f64, f64) -> f64) -> (Vec<Vec3>, Vec<[usize; 3]>, Vec<Point2>) {
-        let n = 24;
-        let mut vertices = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                let (x, y) = (i as f64 / n as f64 - 0.5, j as f64 / n as f64 - 0.5);
-                vertices.push(Vec3::new(x, y, height(x, y)));
-            }
-        }
-        let id = |i: usize, j: usize| j * (n + 1) + i;
-        let mut triangles = Vec::new();
-        for j in 0..n {
-            for i in 0..n {
-                triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        let points = vertices.iter().map(|v| [v.x, v.y]).collect();
+        let (vertices, triangles) =
+            super::super::flatten::lifted_grid(24, |x, y| height(x - 0.5, y - 0.5));
+        let points = vertices.iter().map(|v| [v.x - 0.5, v.y - 0.5]).collect();
         (vertices, triangles, points)
     }
 

@@ -168,7 +168,7 @@ fn alternating_quads_on_a_curved_roof() {
 #[test]
 fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
     use crate::generate::{design_surface, Shape};
-    use crate::{pipeline, PipelineOptions, Progress, Variant};
+    use crate::{pipeline, PipelineOptions, Progress};
     let cases = [
         (Shape::Dome, QuadPattern::Zigzag, true),
         (Shape::Cylinder, QuadPattern::Alternating, true),
@@ -180,13 +180,7 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
     for (shape, pattern, floors) in cases {
         let surface = Surface::new(design_surface(shape)).unwrap();
         let mut options = PipelineOptions::new(750);
-        options.options.variant = Variant::Quads {
-            pattern,
-            quad_direction: None,
-            w_cons_faces: None,
-            w_fair_zig: None,
-            w_fair_str: None,
-        };
+        options.options.variant = quads_variant(pattern);
         let out = pipeline(&surface, &options, &mut Progress::silent()).unwrap();
         let m = measure(&out.honeycomb, &surface);
         let quads = out.report.quads.as_ref().expect("quads reported");
@@ -234,17 +228,11 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
 fn zigzag_quads_follow_the_principal_directions() {
     use crate::generate::{design_surface, Shape};
     use crate::init::{Align, LatticeFollows};
-    use crate::{pipeline, PipelineOptions, Progress, Variant};
+    use crate::{pipeline, PipelineOptions, Progress};
     let surface = Surface::new(design_surface(Shape::Saddle)).unwrap();
     let run = |pattern, align: Option<Align>| {
         let mut options = PipelineOptions::new(750);
-        options.options.variant = Variant::Quads {
-            pattern,
-            quad_direction: None,
-            w_cons_faces: None,
-            w_fair_zig: None,
-            w_fair_str: None,
-        };
+        options.options.variant = quads_variant(pattern);
         if let Some(align) = align {
             options.init.align = align;
             options.align_chosen = true;
@@ -282,6 +270,17 @@ fn zigzag_quads_follow_the_principal_directions() {
     );
     let (follows, _, _) = run(QuadPattern::Alternating, None);
     assert_eq!(follows, LatticeFollows::Boundary);
+}
+
+/// `pipeline --quads PATTERN` with the default weights.
+fn quads_variant(pattern: QuadPattern) -> crate::Variant {
+    crate::Variant::Quads {
+        pattern,
+        quad_direction: None,
+        w_cons_faces: None,
+        w_fair_zig: None,
+        w_fair_str: None,
+    }
 }
 
 /// A prescribed direction picks the straight class: the diagonals of a zigzag cover run along
