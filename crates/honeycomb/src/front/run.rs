@@ -3,8 +3,8 @@
 use super::options::Shading;
 use super::{BaseMesh, Options, Outcome, Progress, Step, Variant, Verdict};
 use crate::analysis::{shading_against_normals, SHADING_DEPTH};
-use crate::error::{Error, Result};
-use crate::init::{Align, CellSize, InitOptions, Method};
+use crate::error::{rounded, Error, Result};
+use crate::init::{Align, CellSize, InitOptions, LatticeFollows, Method};
 use crate::mesh::check_base_near_surface;
 use crate::optimize::{
     capped, optimize as solve, paired, shading_axes, OptimizeOptions, Optimized, ParallelOptions,
@@ -206,6 +206,11 @@ pub fn optimize(
     Ok(outcome(optimized, report, base.mesh().clone(), None))
 }
 
+/// A quad whose diagonals pass within this share of its mean edge length of each other is flat
+/// enough for a zigzag cover to keep its grid along S's principal directions without trying the
+/// boundary's.
+const FLAT_QUAD: f64 = 0.01;
+
 /// What a variant's solve is called in [`Step::Iteration`].
 const VARIANT_SOLVE: &str = "guided projection";
 /// What the capping solve is called in [`Step::Iteration`].
@@ -341,21 +346,66 @@ pub fn pipeline(
     if let Some(s) = &options.options.shading()? {
         return shading_pipeline(surface, strategy, s, progress);
     }
+    let start = Instant::now();
     let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
+    let (mut base, mut initialized) = (made.base, made.initialized.report);
     let (mut optimized, mut report) = (made.optimized, made.report);
-    // The report's seconds count the work on the finished honeycomb too.
-    let start = Instant::now() - std::time::Duration::from_secs_f64(report.seconds);
     if let Some(q) = &options.options.quads()? {
         (optimized, report) =
             cap_with_quads(optimized, report, surface, q, &strategy.optimize, progress)?;
+        let follows = initialized.flat.as_ref().map(|f| f.lattice_follows);
+        let worst = |r: &Report| {
+            r.quads
+                .as_ref()
+                .map_or(f64::MAX, |c| c.faces.delta_face_max)
+        };
+        if follows == Some(LatticeFollows::Curvature)
+            && !options.align_chosen
+            && worst(&report) > FLAT_QUAD
+        {
+            // The grid along S's principal directions makes the twist least on average, not
+            // at every cell: the boundary's grid may leave the worst quad flatter.
+            let mut other = strategy.clone();
+            other.init.align = Align::Boundary;
+            let made = run_strategy(surface, &other, &mut |step| progress.step(step))?;
+            let (o, r) = cap_with_quads(
+                made.optimized,
+                made.report,
+                surface,
+                q,
+                &strategy.optimize,
+                progress,
+            )?;
+            let (along, across) = (worst(&report), worst(&r));
+            let spent = report.iterations_total + r.iterations_total;
+            let note = if r.honeycomb && across < along {
+                (optimized, report) = (o, r);
+                (base, initialized) = (made.base, made.initialized.report);
+                format!(
+                    "the grid along the boundary, whose worst quad is flatter than on the grid \
+                     along S's principal directions ({} against {})",
+                    rounded(across, 4),
+                    rounded(along, 4)
+                )
+            } else {
+                format!(
+                    "the grid along S's principal directions (its worst quad {}, on the \
+                     boundary's grid {})",
+                    rounded(along, 4),
+                    rounded(across, 4)
+                )
+            };
+            report.iterations_total = spent;
+            report.notes.push(format!("zigzag quads: this is {note}"));
+        }
     }
     if let Some(p) = &options.options.paired_parallel()? {
         (optimized, report) =
             pair_on_walls(optimized, report, surface, p, &strategy.optimize, progress)?;
     }
     report.seconds = start.elapsed().as_secs_f64();
-    let mut out = outcome(optimized, report, made.base, None);
-    out.initialized = Some(made.initialized.report);
+    let mut out = outcome(optimized, report, base, None);
+    out.initialized = Some(initialized);
     Ok(out)
 }
 

@@ -272,6 +272,59 @@ fn zigzag_quads_follow_the_principal_directions() {
     assert_eq!(follows, LatticeFollows::Boundary);
 }
 
+/// Where the grid along S's principal directions leaves a quad less flat than 0.01, the
+/// pipeline lays the boundary's grid too and keeps the zigzag cover whose worst quad is
+/// flatter, saying which (the wave's principal directions turn, and at 750 cells the
+/// boundary's grid is the flatter one at its worst).
+#[test]
+fn a_zigzag_cover_keeps_the_grid_with_the_flatter_worst_quad() {
+    use crate::generate::{design_surface, Shape};
+    use crate::init::{Align, LatticeFollows};
+    use crate::{pipeline, PipelineOptions, Progress};
+    let surface = Surface::new(design_surface(Shape::Wave)).unwrap();
+    let run = |align: Option<Align>| {
+        let mut options = PipelineOptions::new(750);
+        options.options.variant = quads_variant(QuadPattern::Zigzag);
+        if let Some(align) = align {
+            options.init.align = align;
+            options.align_chosen = true;
+        }
+        let out = pipeline(&surface, &options, &mut Progress::silent()).unwrap();
+        assert!(out.is_honeycomb());
+        let mesh = out.quads.as_ref().unwrap();
+        let split = mesh.faces.iter().filter(|f| f.len() == 4).count();
+        let faces = crate::structure::quad_mesh_measures(mesh, split);
+        let follows = out
+            .initialized
+            .as_ref()
+            .unwrap()
+            .flat
+            .as_ref()
+            .unwrap()
+            .lattice_follows;
+        (faces, follows, out.report.notes.clone())
+    };
+    let (chosen, follows, notes) = run(None);
+    let (along, along_follows, _) = run(Some(Align::Curvature));
+    let (across, _, _) = run(Some(Align::Boundary));
+    assert_eq!(along_follows, LatticeFollows::Curvature);
+    assert!(along.delta_face_max > 0.01, "{along:?}");
+    let best = along.delta_face_max.min(across.delta_face_max);
+    assert!((chosen.delta_face_max - best).abs() < 1e-12, "{chosen:?}");
+    let kept = if across.delta_face_max < along.delta_face_max {
+        LatticeFollows::Boundary
+    } else {
+        LatticeFollows::Curvature
+    };
+    assert_eq!(follows, kept);
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.starts_with("zigzag quads: this is the grid")),
+        "{notes:?}"
+    );
+}
+
 /// `pipeline --quads PATTERN` with the default weights.
 fn quads_variant(pattern: QuadPattern) -> crate::Variant {
     crate::Variant::Quads {
