@@ -228,33 +228,11 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
 fn zigzag_quads_follow_the_principal_directions() {
     use crate::generate::{design_surface, Shape};
     use crate::init::{Align, LatticeFollows};
-    use crate::{pipeline, PipelineOptions, Progress};
     let surface = Surface::new(design_surface(Shape::Saddle)).unwrap();
-    let run = |pattern, align: Option<Align>| {
-        let mut options = PipelineOptions::new(750);
-        options.options.variant = quads_variant(pattern);
-        if let Some(align) = align {
-            options.init.align = align;
-            options.align_chosen = true;
-        }
-        let out = pipeline(&surface, &options, &mut Progress::silent()).unwrap();
-        assert!(out.is_honeycomb());
-        let follows = out
-            .initialized
-            .as_ref()
-            .unwrap()
-            .flat
-            .as_ref()
-            .unwrap()
-            .lattice_follows;
+    let run = |pattern, align| {
+        let (out, faces, follows) = piped_quads(&surface, pattern, align);
         let capping = out.report.quads.as_ref().unwrap().capping.clone().unwrap();
-        let mesh = out.quads.as_ref().unwrap();
-        let split = mesh.faces.iter().filter(|f| f.len() == 4).count();
-        (
-            follows,
-            capping,
-            crate::structure::quad_mesh_measures(mesh, split),
-        )
+        (follows, capping, faces)
     };
     let (follows, along, faces) = run(QuadPattern::Zigzag, None);
     assert_eq!(follows, LatticeFollows::Curvature);
@@ -280,28 +258,9 @@ fn zigzag_quads_follow_the_principal_directions() {
 fn a_zigzag_cover_keeps_the_grid_with_the_flatter_worst_quad() {
     use crate::generate::{design_surface, Shape};
     use crate::init::{Align, LatticeFollows};
-    use crate::{pipeline, PipelineOptions, Progress};
     let surface = Surface::new(design_surface(Shape::Wave)).unwrap();
-    let run = |align: Option<Align>| {
-        let mut options = PipelineOptions::new(750);
-        options.options.variant = quads_variant(QuadPattern::Zigzag);
-        if let Some(align) = align {
-            options.init.align = align;
-            options.align_chosen = true;
-        }
-        let out = pipeline(&surface, &options, &mut Progress::silent()).unwrap();
-        assert!(out.is_honeycomb());
-        let mesh = out.quads.as_ref().unwrap();
-        let split = mesh.faces.iter().filter(|f| f.len() == 4).count();
-        let faces = crate::structure::quad_mesh_measures(mesh, split);
-        let follows = out
-            .initialized
-            .as_ref()
-            .unwrap()
-            .flat
-            .as_ref()
-            .unwrap()
-            .lattice_follows;
+    let run = |align| {
+        let (out, faces, follows) = piped_quads(&surface, QuadPattern::Zigzag, align);
         (faces, follows, out.report.notes.clone())
     };
     let (chosen, follows, notes) = run(None);
@@ -323,6 +282,30 @@ fn a_zigzag_cover_keeps_the_grid_with_the_flatter_worst_quad() {
             .any(|n| n.starts_with("zigzag quads: this is the grid")),
         "{notes:?}"
     );
+}
+
+/// `pipeline --quads PATTERN` at 750 cells, its grid along `align` if given (else the
+/// pipeline's choice): the outcome, its quads' planarity read off quads.obj's vertices, and
+/// what its grid follows.
+fn piped_quads(
+    surface: &Surface,
+    pattern: QuadPattern,
+    align: Option<crate::init::Align>,
+) -> (crate::Outcome, FaceMeasures, crate::init::LatticeFollows) {
+    let mut options = crate::PipelineOptions::new(750);
+    options.options.variant = quads_variant(pattern);
+    if let Some(align) = align {
+        options.init.align = align;
+        options.align_chosen = true;
+    }
+    let out = crate::pipeline(surface, &options, &mut crate::Progress::silent()).unwrap();
+    assert!(out.is_honeycomb());
+    let mesh = out.quads.as_ref().unwrap();
+    let split = mesh.faces.iter().filter(|f| f.len() == 4).count();
+    let faces = crate::structure::quad_mesh_measures(mesh, split);
+    let grid = out.initialized.as_ref().unwrap().flat.as_ref().unwrap();
+    let follows = grid.lattice_follows;
+    (out, faces, follows)
 }
 
 /// `pipeline --quads PATTERN` with the default weights.
