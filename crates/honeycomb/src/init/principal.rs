@@ -10,6 +10,7 @@
 
 use super::Point2;
 use crate::geometry::Vec3;
+use crate::surface::normals;
 
 /// Below this agreement of S's principal directions (1: the same everywhere, weighted by
 /// anisotropy; 0: spread evenly) no one direction follows them: a lattice turned to follow
@@ -27,7 +28,11 @@ pub fn least_twist_direction(
     triangles: &[[usize; 3]],
     points: &[Point2],
 ) -> Option<f64> {
-    let normals = vertex_normals(vertices, triangles);
+    let normals = normals::vertex_normals(
+        vertices,
+        triangles,
+        &normals::face_normals(vertices, triangles),
+    );
     // The sum of area * twist(theta)^2 is a constant + c cos(4 theta) + s sin(4 theta).
     let (mut c, mut s, mut anisotropy, mut curving) = (0.0, 0.0, 0.0, 0.0);
     for &[i, j, k] in triangles {
@@ -53,18 +58,6 @@ pub fn least_twist_direction(
     let umbilic = curving < 1e-12 || anisotropy < 1e-2 * curving;
     let agreement = 2.0 * (c * c + s * s).sqrt() / anisotropy;
     (!umbilic && agreement >= MIN_AGREEMENT).then(|| (-s).atan2(-c) / 4.0)
-}
-
-/// Area-weighted vertex normals of a triangle mesh (zero for a vertex of no triangle).
-fn vertex_normals(vertices: &[Vec3], triangles: &[[usize; 3]]) -> Vec<Vec3> {
-    let mut normals = vec![Vec3::ZERO; vertices.len()];
-    for &[i, j, k] in triangles {
-        let n = (vertices[j] - vertices[i]).cross(vertices[k] - vertices[i]);
-        for v in [i, j, k] {
-            normals[v] += n;
-        }
-    }
-    normals.iter().map(|n| n.normalized()).collect()
 }
 
 /// A triangle's second fundamental form in the coordinates of its flattened image

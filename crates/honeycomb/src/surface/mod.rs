@@ -5,7 +5,7 @@ mod boundary;
 mod bvh;
 mod closest;
 mod curvature;
-mod normals;
+pub(crate) mod normals;
 mod orient;
 #[cfg(test)]
 mod tests;
