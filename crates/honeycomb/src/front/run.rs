@@ -10,7 +10,7 @@ use crate::optimize::{
     capped, optimize as solve, paired, shading_axes, OptimizeOptions, Optimized, ParallelOptions,
     QuadOptions,
 };
-use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Strategy, Walls};
+use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Pipelined, Strategy, Walls};
 use crate::reciprocal::{AcrossOptions, AxisTargets, SHADING_TILTS};
 use crate::report::Report;
 use crate::structure::{axes_measures, face_measures, measure, QuadPattern};
@@ -347,66 +347,99 @@ pub fn pipeline(
         return shading_pipeline(surface, strategy, s, progress);
     }
     let start = Instant::now();
-    let made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
-    let (mut base, mut initialized) = (made.base, made.initialized.report);
-    let (mut optimized, mut report) = (made.optimized, made.report);
+    let mut made = run_strategy(surface, &strategy, &mut |step| progress.step(step))?;
     if let Some(q) = &options.options.quads()? {
-        (optimized, report) =
-            cap_with_quads(optimized, report, surface, q, &strategy.optimize, progress)?;
-        let follows = initialized.flat.as_ref().map(|f| f.lattice_follows);
-        let worst = |r: &Report| {
-            r.quads
-                .as_ref()
-                .map_or(f64::MAX, |c| c.faces.delta_face_max)
-        };
+        made = capped_made(made, surface, q, &strategy.optimize, progress)?;
+        let follows = made
+            .initialized
+            .report
+            .flat
+            .as_ref()
+            .map(|f| f.lattice_follows);
         if follows == Some(LatticeFollows::Curvature)
             && !options.align_chosen
-            && worst(&report) > FLAT_QUAD
+            && worst_quad(&made.report) > FLAT_QUAD
         {
-            // The grid along S's principal directions makes the twist least on average, not
-            // at every cell: the boundary's grid may leave the worst quad flatter.
-            let mut other = strategy.clone();
-            other.init.align = Align::Boundary;
-            let made = run_strategy(surface, &other, &mut |step| progress.step(step))?;
-            let (o, r) = cap_with_quads(
-                made.optimized,
-                made.report,
-                surface,
-                q,
-                &strategy.optimize,
-                progress,
-            )?;
-            let (along, across) = (worst(&report), worst(&r));
-            let spent = report.iterations_total + r.iterations_total;
-            let note = if r.honeycomb && across < along {
-                (optimized, report) = (o, r);
-                (base, initialized) = (made.base, made.initialized.report);
-                format!(
-                    "the grid along the boundary, whose worst quad is flatter than on the grid \
-                     along S's principal directions ({} against {})",
-                    rounded(across, 4),
-                    rounded(along, 4)
-                )
-            } else {
-                format!(
-                    "the grid along S's principal directions (its worst quad {}, on the \
-                     boundary's grid {})",
-                    rounded(along, 4),
-                    rounded(across, 4)
-                )
-            };
-            report.iterations_total = spent;
-            report.notes.push(format!("zigzag quads: this is {note}"));
+            made = flatter_zigzag_grid(made, surface, &strategy, q, progress)?;
         }
     }
+    let (mut optimized, mut report) = (made.optimized, made.report);
     if let Some(p) = &options.options.paired_parallel()? {
         (optimized, report) =
             pair_on_walls(optimized, report, surface, p, &strategy.optimize, progress)?;
     }
     report.seconds = start.elapsed().as_secs_f64();
-    let mut out = outcome(optimized, report, base, None);
-    out.initialized = Some(initialized);
+    let mut out = outcome(optimized, report, made.base, None);
+    out.initialized = Some(made.initialized.report);
     Ok(out)
+}
+
+/// `made` capped by planar quads (see [`cap_with_quads`]).
+fn capped_made(
+    made: Pipelined,
+    surface: &Surface,
+    quads: &QuadOptions,
+    options: &OptimizeOptions,
+    progress: &mut Progress,
+) -> Result<Pipelined> {
+    let (optimized, report) = cap_with_quads(
+        made.optimized,
+        made.report,
+        surface,
+        quads,
+        options,
+        progress,
+    )?;
+    Ok(Pipelined {
+        optimized,
+        report,
+        ..made
+    })
+}
+
+/// The largest planarity defect of a capped honeycomb's quads.
+fn worst_quad(report: &Report) -> f64 {
+    (report.quads.as_ref()).map_or(f64::MAX, |c| c.faces.delta_face_max)
+}
+
+/// A zigzag cover on the grid along S's principal directions (`along`, capped) made on the
+/// boundary's grid too; the one whose worst quad is flatter is kept, a note saying which. The
+/// grid along the principal directions makes the twist least on average, not at every cell.
+fn flatter_zigzag_grid(
+    along: Pipelined,
+    surface: &Surface,
+    strategy: &Strategy,
+    quads: &QuadOptions,
+    progress: &mut Progress,
+) -> Result<Pipelined> {
+    let mut other = strategy.clone();
+    other.init.align = Align::Boundary;
+    let across = run_strategy(surface, &other, &mut |step| progress.step(step))?;
+    let across = capped_made(across, surface, quads, &strategy.optimize, progress)?;
+    let (a, b) = (worst_quad(&along.report), worst_quad(&across.report));
+    let spent = along.report.iterations_total + across.report.iterations_total;
+    let (mut kept, note) = if across.report.honeycomb && b < a {
+        let note = format!(
+            "the grid along the boundary, whose worst quad is flatter than on the grid along \
+             S's principal directions ({} against {})",
+            rounded(b, 4),
+            rounded(a, 4)
+        );
+        (across, note)
+    } else {
+        let note = format!(
+            "the grid along S's principal directions (its worst quad {}, on the boundary's \
+             grid {})",
+            rounded(a, 4),
+            rounded(b, 4)
+        );
+        (along, note)
+    };
+    kept.report.iterations_total = spent;
+    kept.report
+        .notes
+        .push(format!("zigzag quads: this is {note}"));
+    Ok(kept)
 }
 
 /// The pipeline's shading device (see [`shading_tries`]), each try from a base mesh of its own.
