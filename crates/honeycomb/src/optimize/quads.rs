@@ -121,6 +121,11 @@ pub(crate) fn cap(
     let surface = Surface::from_mesh(&frame.to_normalized(surface))?;
     let (axes, depth) = (&honeycomb.axes, honeycomb.thickness / frame.unit);
     let layout = Layout::new(normalized.vertices.len(), 0);
+    let vertices_of = |x: &[f64]| -> Vec<Vec3> {
+        (0..layout.num_vertices)
+            .map(|v| layout.vertex_at(x, v))
+            .collect()
+    };
     let mut iterations = 0;
     let mut tries = CLOSENESS_WEIGHTS.iter().peekable();
     while let Some(&closeness) = tries.next() {
@@ -133,10 +138,7 @@ pub(crate) fn cap(
         // solve stops once the quads' planarity has settled.
         let mut state = SolveState::new(solver.eps);
         let planarity = |x: &[f64]| {
-            let vertices: Vec<Vec3> = (0..layout.num_vertices)
-                .map(|v| layout.vertex_at(x, v))
-                .collect();
-            let m = face_measures(&vertices, &cover.quads);
+            let m = face_measures(&vertices_of(x), &cover.quads);
             [m.delta_face_max, m.delta_face_avg]
         };
         let mut before = planarity(&x);
@@ -153,9 +155,7 @@ pub(crate) fn cap(
         }
         let mut solve = projection.report(&x, state, solver);
         iterations += solve.iterations;
-        let vertices: Vec<Vec3> = (0..layout.num_vertices)
-            .map(|v| layout.vertex_at(&x, v))
-            .collect();
+        let vertices = vertices_of(&x);
         // The normalized frame's unit is the mean edge length.
         let farthest = (vertices.iter())
             .map(|&p| surface.closest_point(p).distance)
