@@ -206,9 +206,9 @@ fn field_pipeline_tries_the_next_seed() {
     assert_eq!(number(&report, "nonconvex_walls"), 0.0, "{report}");
 }
 
-/// A light no try makes a shading device for (Yas Island, a low sun from +x: the walls turned
-/// across it give no clean honeycomb on any grid, nor does the guided projection): one error
-/// naming the light and the share of the best try, the outputs aside in DIR.failed.
+/// A light no try makes a shading device for (Yas Island, a low sun from +x: the best try's
+/// cells let through just over half the reference's light): one error naming the light and
+/// the share of the best try, the outputs aside in DIR.failed.
 #[test]
 fn a_light_no_try_meets_is_named_with_its_best_share() {
     let Some(data) = shared_data() else {
@@ -233,7 +233,7 @@ fn a_light_no_try_meets_is_named_with_its_best_share() {
     let err = stderr(&output);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(
-        err.contains("light -0.866,0,-0.5") && err.contains("lets through"),
+        err.contains("light -0.866,0,-0.5") && err.contains("through"),
         "{err}"
     );
     let failed = dir.join("out.failed");
@@ -242,4 +242,39 @@ fn a_light_no_try_meets_is_named_with_its_best_share() {
     let best = format!("{}", (number(shading, "after") * 1000.0).round() / 1000.0);
     assert!(err.contains(&best), "{best} not in {err}");
     assert!(!out.exists());
+}
+
+/// Yas Island between the benchmarked sizes: at 900 cells the sheet folds along the ring's
+/// tight border and breaks more boundary cells than a designer's mesh may lose, in every
+/// grid the pipeline tries. The laid grid may lose up to 6% of its cells there: walls across,
+/// exact, with the asked cell count kept within 15%.
+#[test]
+fn a_long_tightly_turning_border_loses_boundary_cells_not_the_walls_across() {
+    let Some(data) = shared_data() else {
+        println!("skipping: ../shared/data not found");
+        return;
+    };
+    let dir = TempDir::new("shared-yas-900");
+    let out = dir.join("out");
+    let input = data.join("YasIsland.off");
+    let args = ["pipeline", input.to_str().unwrap(), "--cells", "900", "-q"];
+    let output = run(args.into_iter().chain(["-o", out.to_str().unwrap()]));
+    assert!(output.status.success(), "{}", stderr(&output));
+    let report = read_json(&out, "report.json");
+    assert_eq!(report["walls"], "across", "{report}");
+    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
+    assert!(number(&report, "delta_max") < 1e-6, "{report}");
+    assert_eq!(number(&report, "nonconvex_walls"), 0.0, "{report}");
+    let cells = number(&report, "faces");
+    assert!((cells - 900.0).abs() <= 0.15 * 900.0, "{cells} cells");
+    let dropped = number(&report, "dropped_boundary_cells");
+    assert!(
+        dropped <= 0.06 * (cells + dropped),
+        "{dropped} of {cells} cells dropped"
+    );
+    let (axis, parallel) = (
+        number(&report["axis_normal_deg"], "mean"),
+        number(&report["parallel_baseline_deg"], "mean"),
+    );
+    assert!(axis <= 0.5 * parallel, "axis {axis}, parallel {parallel}");
 }

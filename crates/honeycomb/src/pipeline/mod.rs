@@ -99,6 +99,9 @@ const SECOND_TURN: f64 = std::f64::consts::FRAC_PI_6;
 /// chance, not a better default: it slows the fit on gently curved surfaces.
 const FACING_RETRY: f64 = 1.0;
 
+/// Rounds of dropping boundary cells from a designer's mesh whose walls a light turned.
+const DESIGNER_DROP_ROUNDS: usize = 5;
+
 /// Runs the pipeline on `surface`.
 pub fn pipeline(
     model_surface: &Surface,
@@ -423,8 +426,9 @@ pub fn solve_base(
             max_drops: if targets == AxisTargets::Normals {
                 0
             } else {
-                defaults.max_drops
+                DESIGNER_DROP_ROUNDS
             },
+            max_dropped_share: crate::optimize::MAX_DROPPED_SHARE,
             max_trimmed_share: 0.0,
             targets,
             ..defaults

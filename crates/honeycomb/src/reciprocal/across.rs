@@ -14,6 +14,14 @@ use crate::solve::{IterationInfo, SolveReport};
 use crate::structure::{measure, Honeycomb, Measures};
 use crate::surface::Surface;
 
+/// Rounds of dropping broken boundary cells at most, on a grid the pipeline laid.
+pub const DROP_ROUNDS: usize = 8;
+/// At most this share of a laid grid's cells is dropped. Where S's border turns tightly or
+/// runs steeply across the walls, the sheet folds along it and the boundary cells break in a
+/// ring a few cells long at each such place; a long border (a narrow roof, a ring) holds more
+/// of them than the share a designer's mesh may lose (`crate::optimize::MAX_DROPPED_SHARE`).
+pub const GRID_DROPPED_SHARE: f64 = 0.06;
+
 #[derive(Clone, Debug)]
 pub struct AcrossOptions {
     pub field: AxisFieldOptions,
@@ -39,8 +47,8 @@ impl Default for AcrossOptions {
             placement: PlacementOptions::default(),
             thickness: None,
             default_depth: crate::optimize::DEFAULT_THICKNESS,
-            max_drops: 5,
-            max_dropped_share: crate::optimize::MAX_DROPPED_SHARE,
+            max_drops: DROP_ROUNDS,
+            max_dropped_share: GRID_DROPPED_SHARE,
             max_trimmed_share: 0.01,
             targets: AxisTargets::Normals,
         }
