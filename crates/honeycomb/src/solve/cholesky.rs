@@ -26,29 +26,27 @@ pub enum Cholesky {
 }
 
 /// From this many blocks on, a system whose blocks have positions is factored in two halves
-/// on two threads (where the process may use two: `taskset -c 0` measures the whole factor).
-/// At about 1000 blocks (700 vertices) both take the same time; at 2500 the split is 1.4x
-/// faster.
+/// on two threads. At about 1000 blocks (700 vertices) both take the same time; at 2500 the
+/// split is 1.4x faster. A process confined to one core splits too (its two threads take
+/// turns): the split's roundoff differs from the whole factor's, and on a surface where the
+/// sheet's folds are chaotic that decides between results, which must not depend on the
+/// machine.
 const SPLIT_MIN_BLOCKS: usize = 2000;
 
 impl Cholesky {
     /// Symbolic analysis of unknowns in blocks of `block` consecutive indices (1: each on its
     /// own): the ordering is computed on the block graph, by nested dissection when the
     /// blocks' `positions` are given and the system is large. With positions, from
-    /// `SPLIT_MIN_BLOCKS` blocks and two threads, the system is split at the first cut.
+    /// `SPLIT_MIN_BLOCKS` blocks, the system is split at the first cut.
     pub fn analyse(
         matrix: &NormalMatrix,
         block: usize,
         positions: Option<&[Option<Vec3>]>,
     ) -> Result<Cholesky> {
         let nb = matrix.n / block.max(1);
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
         match positions {
             Some(p)
-                if threads >= 2
-                    && matrix.n.is_multiple_of(block)
-                    && nb >= SPLIT_MIN_BLOCKS
-                    && p.len() == nb =>
+                if matrix.n.is_multiple_of(block) && nb >= SPLIT_MIN_BLOCKS && p.len() == nb =>
             {
                 let graph = block_graph(matrix, block);
                 let [a, b, s] = split_in_halves(&graph, p, DISSECTION_MIN_BLOCKS)?;
