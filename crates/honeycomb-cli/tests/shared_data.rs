@@ -4,18 +4,22 @@
 mod common;
 
 use common::{number, parse_json, read_json, run, shared_data, stderr, TempDir, REPORT_KEYS};
+use std::path::PathBuf;
 use std::process::Output;
 
 struct Run {
     output: Output,
     /// report.json, when the run wrote one.
     report: Option<serde_json::Value>,
+    /// Where the run wrote: the output directory, or beside it (DIR.failed) for a result that
+    /// is no honeycomb.
+    written: PathBuf,
     /// Keeps the output directory until the test ends.
     _dir: TempDir,
 }
 
-/// `honeycomb optimize DATA/NAME --quiet -o TMP/out`, or None (after saying so) without data.
-fn optimize_shared(name: &str, extra: &[&str]) -> Option<Run> {
+/// `honeycomb COMMAND DATA/NAME ARGS -o TMP/out`, or None (after saying so) without data.
+fn run_shared(command: &str, name: &str, args: &[&str]) -> Option<Run> {
     let Some(data) = shared_data() else {
         println!("skipping: ../shared/data not found");
         return None;
@@ -26,28 +30,37 @@ fn optimize_shared(name: &str, extra: &[&str]) -> Option<Run> {
         "{} is missing from ../shared/data",
         input.display()
     );
-    let dir = TempDir::new(&format!("shared-{name}"));
+    // Tests run at once, several on one input: each its own directory.
+    static RUNS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = TempDir::new(&format!("shared-{command}-{name}-{k}"));
     let out = dir.join("out");
-    let mut args: Vec<std::ffi::OsString> = vec!["optimize".into(), input.into(), "--quiet".into()];
-    args.extend(extra.iter().map(Into::into));
-    args.extend(["-o".into(), out.clone().into()]);
-    let output = run(&args);
+    let mut all: Vec<std::ffi::OsString> = vec![command.into(), input.into()];
+    all.extend(args.iter().map(Into::into));
+    all.extend(["-o".into(), out.clone().into()]);
+    let output = run(&all);
     assert!(
         !stderr(&output).contains("panicked"),
         "{name}: {}",
         stderr(&output)
     );
-    // A result that is no honeycomb goes beside the output directory, for inspection.
-    let report = std::fs::read_to_string(common::written(&output, &out).join("report.json"))
+    let written = common::written(&output, &out);
+    let report = std::fs::read_to_string(written.join("report.json"))
         .ok()
         .map(|text| parse_json(&text, "report.json"));
     let r = Run {
         output,
         report,
+        written,
         _dir: dir,
     };
     print_figures(name, &r);
     Some(r)
+}
+
+/// `honeycomb optimize DATA/NAME --quiet EXTRA -o TMP/out`.
+fn optimize_shared(name: &str, extra: &[&str]) -> Option<Run> {
+    run_shared("optimize", name, &[&["--quiet"], extra].concat())
 }
 
 fn print_figures(name: &str, r: &Run) {
@@ -183,25 +196,18 @@ fn dome_with_mixed_cells_runs() {
 /// and names it in init.json.
 #[test]
 fn field_pipeline_tries_the_next_seed() {
-    let Some(data) = shared_data() else {
-        println!("skipping: ../shared/data not found");
+    let args = ["--cells", "750", "--method", "field"];
+    let Some(r) = run_shared("pipeline", "inspired_mesh.obj", &args) else {
         return;
     };
-    let dir = TempDir::new("shared-field-seed");
-    let out = dir.join("out");
-    let input = data.join("inspired_mesh.obj");
-    let args = ["pipeline", input.to_str().unwrap(), "--cells", "750"];
-    let output = run(args
-        .into_iter()
-        .chain(["--method", "field", "-o", out.to_str().unwrap()]));
-    assert!(output.status.success(), "{}", stderr(&output));
+    let err = stderr(&r.output);
+    assert!(r.output.status.success(), "{err}");
     assert!(
-        stderr(&output).contains("note: --seed 0:") && stderr(&output).contains("trying --seed 1"),
-        "{}",
-        stderr(&output)
+        err.contains("note: --seed 0:") && err.contains("trying --seed 1"),
+        "{err}"
     );
-    assert_eq!(read_json(&out, "init.json")["seed"], 1);
-    let report = read_json(&out, "report.json");
+    assert_eq!(read_json(&r.written, "init.json")["seed"], 1);
+    let report = r.report.expect("report.json");
     assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
     assert_eq!(number(&report, "nonconvex_walls"), 0.0, "{report}");
 }
@@ -211,37 +217,23 @@ fn field_pipeline_tries_the_next_seed() {
 /// the share of the best try, the outputs aside in DIR.failed.
 #[test]
 fn a_light_no_try_meets_is_named_with_its_best_share() {
-    let Some(data) = shared_data() else {
-        println!("skipping: ../shared/data not found");
+    let args = ["--cells", "750", "--light", "-0.866025,0,-0.5", "-q"];
+    let Some(r) = run_shared("pipeline", "YasIsland.off", &args) else {
         return;
     };
-    let dir = TempDir::new("shared-light");
-    let out = dir.join("out");
-    let input = data.join("YasIsland.off");
-    let output = run([
-        "pipeline",
-        input.to_str().unwrap(),
-        "--cells",
-        "750",
-        "--light",
-        "-0.866025,0,-0.5",
-        "-q",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(!output.status.success());
-    let err = stderr(&output);
+    assert!(!r.output.status.success());
+    let err = stderr(&r.output);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(
         err.contains("light -0.866,0,-0.5") && err.contains("through"),
         "{err}"
     );
-    let failed = dir.join("out.failed");
-    let report = read_json(&failed, "report.json");
+    assert!(r.written.ends_with("out.failed"), "{}", r.written.display());
+    let report = r.report.expect("report.json for inspection");
     let shading = &report["shading"]["light"];
     let best = format!("{}", (number(shading, "after") * 1000.0).round() / 1000.0);
     assert!(err.contains(&best), "{best} not in {err}");
-    assert!(!out.exists());
+    assert!(!r.written.with_file_name("out").exists());
 }
 
 /// Yas Island between the benchmarked sizes: at 900 cells the sheet folds along the ring's
@@ -250,17 +242,12 @@ fn a_light_no_try_meets_is_named_with_its_best_share() {
 /// exact, with the asked cell count kept within 15%.
 #[test]
 fn a_long_tightly_turning_border_loses_boundary_cells_not_the_walls_across() {
-    let Some(data) = shared_data() else {
-        println!("skipping: ../shared/data not found");
+    let args = ["--cells", "900", "-q"];
+    let Some(r) = run_shared("pipeline", "YasIsland.off", &args) else {
         return;
     };
-    let dir = TempDir::new("shared-yas-900");
-    let out = dir.join("out");
-    let input = data.join("YasIsland.off");
-    let args = ["pipeline", input.to_str().unwrap(), "--cells", "900", "-q"];
-    let output = run(args.into_iter().chain(["-o", out.to_str().unwrap()]));
-    assert!(output.status.success(), "{}", stderr(&output));
-    let report = read_json(&out, "report.json");
+    assert!(r.output.status.success(), "{}", stderr(&r.output));
+    let report = r.report.expect("report.json");
     assert_eq!(report["walls"], "across", "{report}");
     assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
     assert!(number(&report, "delta_max") < 1e-6, "{report}");
