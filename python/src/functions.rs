@@ -70,7 +70,9 @@ pub(crate) fn pipeline(
     init.boundary = boundary
         .parse::<BoundaryMode>()
         .map_err(|m| named("boundary", m))?;
-    init.align = Align::parse(align.unwrap_or("boundary")).map_err(py_err)?;
+    if let Some(align) = align {
+        init.align = Align::parse(align).map_err(py_err)?;
+    }
     init.seed = seed;
     pipeline_options.init_chosen = flatten.is_some() || init.method == Method::Field;
     pipeline_options.align_chosen = align.is_some();

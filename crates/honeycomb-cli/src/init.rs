@@ -62,17 +62,16 @@ impl InitArgs {
                     .into(),
             ));
         }
-        let align = Align::parse(self.align.as_deref().unwrap_or("boundary"))?;
-        let options = InitOptions {
-            size,
+        let mut options = InitOptions {
             method: self.method,
-            align,
             boundary: self.boundary,
             flattener: self.flatten.unwrap_or_default(),
-            view: None,
             seed: self.seed,
-            turn: 0.0,
+            ..InitOptions::new(size)
         };
+        if let Some(align) = &self.align {
+            options.align = Align::parse(align)?;
+        }
         options.validate()?;
         Ok(options)
     }
