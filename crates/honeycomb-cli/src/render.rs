@@ -19,7 +19,8 @@ pub struct Args {
     /// What the wall colours show: omega (the worst node angle at either end, degrees), delta
     /// (the wall's planarity), closeness (distance of its ends from S, in mean edge lengths;
     /// needs --surface or DIR/surface.obj), axis (the larger angle of its two node axes to S's
-    /// normal, degrees; needs S too) or area (|spherical area| of its cells, sr).
+    /// normal, degrees; needs S too), area (|spherical area| of its cells, sr) or length (its
+    /// edge over the mean edge length: how even the cells are).
     #[arg(long, default_value = "delta")]
     pub color: String,
     /// Viewing direction: auto (along the shape's direction of least bending, from 30 degrees

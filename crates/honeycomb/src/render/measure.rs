@@ -14,6 +14,7 @@ pub enum WallMeasure {
     Closeness,
     Axis,
     Area,
+    Length,
 }
 
 impl FromStr for WallMeasure {
@@ -25,9 +26,10 @@ impl FromStr for WallMeasure {
             "closeness" => WallMeasure::Closeness,
             "axis" => WallMeasure::Axis,
             "area" => WallMeasure::Area,
+            "length" => WallMeasure::Length,
             _ => {
                 return Err(format!(
-                    "--color {s}: expected omega, delta, closeness, axis or area"
+                    "--color {s}: expected omega, delta, closeness, axis, area or length"
                 ))
             }
         })
@@ -42,6 +44,7 @@ impl WallMeasure {
             WallMeasure::Closeness => "closeness",
             WallMeasure::Axis => "axis",
             WallMeasure::Area => "area",
+            WallMeasure::Length => "length",
         }
     }
 
@@ -53,6 +56,7 @@ impl WallMeasure {
             WallMeasure::Closeness => "distance of its ends from S",
             WallMeasure::Axis => "larger angle of its node axes to S's normal",
             WallMeasure::Area => "larger |spherical area| of its two cells",
+            WallMeasure::Length => "its edge on S over the mean edge length",
         }
     }
 
@@ -61,18 +65,20 @@ impl WallMeasure {
             WallMeasure::Omega | WallMeasure::Axis => "deg",
             WallMeasure::Delta => "",
             WallMeasure::Closeness => "edge lengths",
+            WallMeasure::Length => "",
             WallMeasure::Area => "sr",
         }
     }
 
     /// Where a wall stops being good: the honeycomb's tolerances, and the pipeline's bound for
-    /// a vertex on S. Axis and area have none: they describe a design, they do not judge it.
+    /// a vertex on S. Axis, area and length have none: they describe a design, they do not
+    /// judge it.
     pub fn tolerance(self) -> Option<f64> {
         match self {
             WallMeasure::Omega => Some(Report::OMEGA_TOLERANCE_DEG),
             WallMeasure::Delta => Some(Report::DELTA_TOLERANCE),
             WallMeasure::Closeness => Some(ON_S),
-            WallMeasure::Axis | WallMeasure::Area => None,
+            WallMeasure::Axis | WallMeasure::Area | WallMeasure::Length => None,
         }
     }
 
@@ -96,6 +102,14 @@ impl WallMeasure {
             WallMeasure::Omega => larger(&m.omega_per_node),
             WallMeasure::Closeness => larger(&m.closeness_per_vertex),
             WallMeasure::Axis => larger(&m.axis_normal_per_node),
+            WallMeasure::Length => h
+                .edges
+                .iter()
+                .map(|&[a, b]| {
+                    (h.base.vertices[a] - h.base.vertices[b]).norm()
+                        / m.mean_edge_length.max(1e-300)
+                })
+                .collect(),
             WallMeasure::Area => {
                 let image = spherical_image(&h.base.faces, &h.axes, tolerance);
                 conn.edge_faces
