@@ -20,7 +20,7 @@ use std::path::PathBuf;
 /// about this many cells (or `edge_length` in model units); `method`: "flatten" or "field";
 /// `flatten`: "arap", "lscm" or "project" (default: the pipeline's choice); `boundary`:
 /// "trim" or "keep" the cells S's border cuts; `align`: "boundary", "curvature", "none" or a
-/// polyline file of strokes (default: "boundary", "curvature" for zigzag quads); `seed` shifts the lattice (as `honeycomb pipeline`'s flags). Other keyword arguments are the options of `honeycomb
+/// polyline file of strokes (default: "boundary", "curvature" for zigzag or flattest quads); `seed` shifts the lattice (as `honeycomb pipeline`'s flags). Other keyword arguments are the options of `honeycomb
 /// optimize` by their field names (`w_fair` for `--w-fair`). `progress(step: dict)` is
 /// called at every step; returning False stops the work (`honeycomb.Cancelled`).
 #[pyfunction]

@@ -94,6 +94,21 @@ def test_zigzag_quads_follow_the_principal_directions(surface):
     assert along.report["delta_face_max"] <= 0.01
 
 
+def test_flattest_quads_on_a_boundary_grid_beat_the_zigzag_there(surface):
+    # On the grid along the boundary the saddle twists along every long diagonal of a zigzag
+    # cover; each cell of a flattest cover picks its own diagonal, and its quads end flatter.
+    def capped(pattern):
+        variant = {"kind": "quads", "pattern": pattern}
+        out = honeycomb.pipeline(surface, cells=CELLS, variant=variant, align="boundary")
+        assert out.is_honeycomb, out.why
+        return out.report
+
+    flattest, zigzag = capped("flattest"), capped("zigzag")
+    assert flattest["quad_pattern"] == "flattest"
+    assert flattest["delta_face_avg"] < 0.5 * zigzag["delta_face_avg"]
+    assert flattest["closeness_max"] <= 0.1
+
+
 def test_lists_paths_and_arrays_give_the_same_result(surface, result, tmp_path):
     vertices, faces = surface
     as_lists = honeycomb.pipeline((vertices.tolist(), faces.tolist()), cells=CELLS)

@@ -39,9 +39,10 @@ pub struct RoofsArgs {
 
 /// The variants `--variants` runs on every surface, by the name its rows give: the shading
 /// rows are for a sun 30 degrees high in the south-west and 60 degrees high in the north-east.
-const VARIANTS: [&str; 5] = [
+const VARIANTS: [&str; 6] = [
     "zigzag",
     "alternating",
+    "flattest",
     "parallel",
     "sun 30/225",
     "sun 60/45",
@@ -64,11 +65,8 @@ fn variant(name: &str) -> Variant {
             w_depth: None,
         },
         pattern => Variant::Quads {
-            pattern: if pattern == "zigzag" {
-                QuadPattern::Zigzag
-            } else {
-                QuadPattern::Alternating
-            },
+            pattern: (pattern.parse::<QuadPattern>())
+                .expect("the other rows of VARIANTS are quad patterns"),
             quad_direction: None,
             w_cons_faces: None,
             w_fair_zig: None,

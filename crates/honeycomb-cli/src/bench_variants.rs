@@ -25,6 +25,7 @@ fn cases() -> Vec<Case> {
         name: match pattern {
             QuadPattern::Zigzag => "zigzag quads",
             QuadPattern::Alternating => "alternating quads",
+            QuadPattern::Flattest => "flattest quads",
         },
         paper_seconds: (pattern == QuadPattern::Zigzag).then_some(3.0),
         subject: roof(3500, amplitude),

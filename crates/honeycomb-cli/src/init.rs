@@ -30,7 +30,7 @@ pub struct InitArgs {
     /// follows its principal curvature directions where they agree over most of it (else the
     /// boundary), so that zigzag quads along it are flattest; `none`; or an OBJ file of
     /// polylines (`l` records) the hex edges should follow [default: boundary; pipeline
-    /// --quads zigzag: curvature].
+    /// --quads zigzag or flattest: curvature].
     #[arg(long)]
     pub align: Option<String>,
     /// `trim`: drop cells the boundary cuts; `keep`: close them against the boundary.

@@ -100,10 +100,11 @@ pub struct SolveArgs {
     pub sun_path: Option<PathBuf>,
     /// Cap every hexagon with two planar quads (Figs. 1, 11, 17), written to quads.obj:
     /// `zigzag` splits all cells along one lattice direction, `alternating` splits neighbouring
-    /// strips along the other two by turns. The honeycomb (walls as --walls says) is made
+    /// strips along the other two by turns, `flattest` splits each cell along whichever
+    /// diagonal leaves its quads flattest. The honeycomb (walls as --walls says) is made
     /// first; then its walls are kept and its vertices move, off the surface where the quads
     /// need it (report.json's `capping` says how far).
-    #[arg(long, value_name = "zigzag|alternating")]
+    #[arg(long, value_name = "zigzag|alternating|flattest")]
     pub quads: Option<QuadPattern>,
     /// With --quads: the straight polylines follow the lattice direction closest to DX,DY,DZ
     /// [default: the direction whose quads start closest to planar].

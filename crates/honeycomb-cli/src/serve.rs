@@ -37,7 +37,7 @@ pub struct Args {
     pub walls: Option<String>,
     /// With a design surface: cap every hexagon with two planar quads, as `pipeline --quads`;
     /// the page shows their planarity after every edit.
-    #[arg(long, value_name = "zigzag|alternating")]
+    #[arg(long, value_name = "zigzag|alternating|flattest")]
     pub quads: Option<QuadPattern>,
     /// With a design surface: parallel meshes M, M' on the honeycomb's walls, as `pipeline
     /// --parallel`; the page shows how parallel they stay after every edit.

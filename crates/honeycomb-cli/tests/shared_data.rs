@@ -265,3 +265,35 @@ fn a_long_tightly_turning_border_loses_boundary_cells_not_the_walls_across() {
     );
     assert!(axis <= 0.5 * parallel, "axis {axis}, parallel {parallel}");
 }
+
+/// Roofs whose principal directions turn: a zigzag cover, one lattice direction throughout,
+/// keeps quads S twists along, while a flattest cover splits each cell along its own flattest
+/// diagonal and meets the quad floors (max 0.01, mean 0.004) with the honeycomb exact and every
+/// vertex within 0.1 mean edge lengths of S.
+#[test]
+fn a_flattest_cover_meets_the_quad_floors_where_a_zigzag_does_not() {
+    for roof in ["Neumunster.ply", "inspired_mesh.obj"] {
+        let quads = |pattern| {
+            let args = ["--cells", "750", "--quads", pattern, "-q"];
+            let r = run_shared("pipeline", roof, &args)?;
+            assert!(r.output.status.success(), "{}", stderr(&r.output));
+            r.report
+        };
+        let (Some(flattest), Some(zigzag)) = (quads("flattest"), quads("zigzag")) else {
+            return;
+        };
+        let faces = |report: &serde_json::Value| {
+            (
+                number(report, "delta_face_max"),
+                number(report, "delta_face_avg"),
+            )
+        };
+        let ((max, avg), (zigzag_max, _)) = (faces(&flattest), faces(&zigzag));
+        assert_eq!(flattest["quad_pattern"], "flattest", "{roof}");
+        assert!(max <= 0.01 && avg <= 0.004, "{roof}: {max} / {avg}");
+        assert!(zigzag_max > 0.01, "{roof}: zigzag {zigzag_max}");
+        assert!(number(&flattest, "omega_max_deg") < 0.05, "{roof}");
+        assert!(number(&flattest, "delta_max") < 1e-5, "{roof}");
+        assert!(number(&flattest, "closeness_max") <= 0.1, "{roof}");
+    }
+}

@@ -241,7 +241,7 @@ fn nonsense_variant_values_are_rejected() {
     demo_fails(
         "quads",
         &["--quads", "spiral"],
-        &["spiral", "zigzag or alternating"],
+        &["spiral", "zigzag, alternating or flattest"],
     );
     demo_fails(
         "quad_direction",

@@ -77,14 +77,16 @@ impl PipelineOptions {
             optimize.parallel = None;
         }
         let mut init = self.init.clone();
-        let zigzag = matches!(
+        // Zigzag quads are flat where their diagonals follow a principal direction, and a
+        // flattest cover then picks those diagonals too.
+        let along_curvature = matches!(
             self.options.variant,
             Variant::Quads {
-                pattern: QuadPattern::Zigzag,
+                pattern: QuadPattern::Zigzag | QuadPattern::Flattest,
                 ..
             }
         );
-        if zigzag && !self.align_chosen && init.method == Method::Flatten {
+        if along_curvature && !self.align_chosen && init.method == Method::Flatten {
             init.align = Align::Curvature;
         }
         Ok(Strategy {
@@ -207,7 +209,7 @@ pub fn optimize(
 }
 
 /// A quad whose diagonals pass within this share of its mean edge length of each other is flat
-/// enough for a zigzag cover to keep its grid along S's principal directions without trying the
+/// enough for a zigzag or flattest cover to keep its grid along S's principal directions without trying the
 /// boundary's.
 const FLAT_QUAD: f64 = 0.01;
 
@@ -360,7 +362,7 @@ pub fn pipeline(
             && !options.align_chosen
             && worst_quad(&made.report) > FLAT_QUAD
         {
-            made = flatter_zigzag_grid(made, surface, &strategy, q, progress)?;
+            made = flatter_grid(made, surface, &strategy, q, progress)?;
         }
     }
     let (mut optimized, mut report) = (made.optimized, made.report);
@@ -402,10 +404,10 @@ fn worst_quad(report: &Report) -> f64 {
     (report.quads.as_ref()).map_or(f64::MAX, |c| c.faces.delta_face_max)
 }
 
-/// A zigzag cover on the grid along S's principal directions (`along`, capped) made on the
+/// A zigzag or flattest cover on the grid along S's principal directions (`along`, capped) made on the
 /// boundary's grid too; the one whose worst quad is flatter is kept, a note saying which. The
 /// grid along the principal directions makes the twist least on average, not at every cell.
-fn flatter_zigzag_grid(
+fn flatter_grid(
     along: Pipelined,
     surface: &Surface,
     strategy: &Strategy,
@@ -438,7 +440,7 @@ fn flatter_zigzag_grid(
     kept.report.iterations_total = spent;
     kept.report
         .notes
-        .push(format!("zigzag quads: this is {note}"));
+        .push(format!("{} quads: this is {note}", quads.pattern.label()));
     Ok(kept)
 }
 

@@ -21,6 +21,10 @@
 //!   every node). Even strips split along their class-1 diagonal, odd strips along class 2: the
 //!   quads of neighbouring strips lean opposite ways (a herringbone). The diagonals no longer
 //!   line up across cells, but each is still continued at both ends by the edge beyond it.
+//! - `Flattest`: every cell splits along whichever diagonal leaves its two quads flattest as
+//!   the honeycomb stands. No polyline runs straight for long, but where S twists along every
+//!   lattice direction in turn (most freeform roofs) the quads start two to three times
+//!   flatter than any one pattern's, and the capping takes them much further.
 
 use super::quad_planarity;
 use crate::geometry::Vec3;
@@ -37,6 +41,8 @@ pub enum QuadPattern {
     Zigzag,
     /// Strips along the straight class, split along the other two classes by turns (Fig. 17).
     Alternating,
+    /// Each cell along whichever of its diagonals leaves its two quads flattest.
+    Flattest,
 }
 
 impl QuadPattern {
@@ -45,6 +51,7 @@ impl QuadPattern {
         match self {
             QuadPattern::Zigzag => "zigzag",
             QuadPattern::Alternating => "alternating",
+            QuadPattern::Flattest => "flattest",
         }
     }
 }
@@ -55,8 +62,9 @@ impl FromStr for QuadPattern {
         match s {
             "zigzag" => Ok(QuadPattern::Zigzag),
             "alternating" => Ok(QuadPattern::Alternating),
+            "flattest" => Ok(QuadPattern::Flattest),
             _ => Err(format!(
-                "unknown quad pattern '{s}': expected zigzag or alternating"
+                "unknown quad pattern '{s}': expected zigzag, alternating or flattest"
             )),
         }
     }
@@ -215,9 +223,11 @@ impl QuadCover {
         direction: Option<Vec3>,
     ) -> QuadCover {
         let raw = EdgeClasses::of(mesh, conn);
-        let straight = match direction {
-            Some(d) => most_parallel_class(mesh, conn, &raw, d),
-            None => flattest_class(mesh, conn, &raw, pattern),
+        let straight = match (pattern, direction) {
+            // Each cell picks its own diagonal: the classes' names do not matter.
+            (QuadPattern::Flattest, _) => vec![0; raw.num_patches],
+            (_, Some(d)) => most_parallel_class(mesh, conn, &raw, d),
+            (_, None) => flattest_class(mesh, conn, &raw, pattern),
         };
         let classes = raw.renumbered(conn, &straight);
         QuadCover::with_classes(mesh, conn, pattern, classes)
@@ -231,7 +241,7 @@ impl QuadCover {
     ) -> QuadCover {
         let nf = mesh.faces.len();
         let parity = match pattern {
-            QuadPattern::Zigzag => vec![0; nf],
+            QuadPattern::Zigzag | QuadPattern::Flattest => vec![0; nf],
             QuadPattern::Alternating => strip_parity(mesh, conn, &classes),
         };
         let mut cover = QuadCover {
@@ -254,6 +264,7 @@ impl QuadCover {
             let class = match pattern {
                 QuadPattern::Zigzag => 0,
                 QuadPattern::Alternating => 1 + parity[f],
+                QuadPattern::Flattest => flattest_diagonal(mesh, face, offset),
             };
             // Edges k0 and k0 + 3 have the diagonal's class; it runs from face[k0 - 1].
             let k0 = (class as usize + 3 - offset as usize) % 3;
@@ -286,6 +297,22 @@ impl QuadCover {
     pub fn corners(&self, vertices: &[Vec3], q: usize) -> [Vec3; 4] {
         self.quads[q].map(|v| vertices[v])
     }
+}
+
+/// The class of the diagonal of hexagon `face` whose two quads are flattest (the larger of their
+/// planarities least).
+fn flattest_diagonal(mesh: &PolyMesh, face: &[usize], offset: u8) -> u8 {
+    best(|class| {
+        let k0 = (class + 3 - offset as usize) % 3;
+        let j = (k0 + 5) % 6;
+        let at = |i: usize| mesh.vertices[face[(j + i) % 6]];
+        quad_planarity([at(0), at(1), at(2), at(3)]).max(quad_planarity([
+            at(3),
+            at(4),
+            at(5),
+            at(0),
+        ]))
+    })
 }
 
 /// Per patch, the class whose edges are on average most parallel to `d` (absolute cosine).
@@ -520,6 +547,35 @@ mod tests {
         assert_eq!(m.faces.len(), c.quads.len() + c.unsplit.len());
         // Consistently oriented (Connectivity rejects flips) on M's own vertices.
         Connectivity::build(&m).unwrap();
+    }
+
+    /// On a surface that twists along different lattice directions in different places (here
+    /// `z = sin x cos y / 5`, whose principal directions turn), a flattest cover splits each
+    /// hexagon along the long diagonal whose two quads are flattest, whichever class that is.
+    #[test]
+    fn a_flattest_cover_splits_each_cell_where_its_quads_are_flattest() {
+        let mut mesh = hex_disk(6.0);
+        for p in &mut mesh.vertices {
+            p.z = (p.x.sin() * p.y.cos()) / 5.0;
+        }
+        let conn = Connectivity::build(&mesh).unwrap();
+        let c = QuadCover::new(&mesh, &conn, QuadPattern::Flattest, None);
+        let mut classes = std::collections::HashSet::new();
+        for (f, face) in mesh.faces.iter().enumerate() {
+            let at = |i: usize| mesh.vertices[face[i % 6]];
+            let worse = |k: usize| {
+                let first = quad_planarity([at(k), at(k + 1), at(k + 2), at(k + 3)]);
+                first.max(quad_planarity([at(k + 3), at(k + 4), at(k + 5), at(k + 6)]))
+            };
+            let mut chosen = c.diagonals[f].unwrap();
+            chosen.sort();
+            let k = (0..3).find(|&k| chosen.contains(&face[k])).unwrap();
+            let least = (0..3).map(worse).fold(f64::INFINITY, f64::min);
+            // Cells placed symmetrically tie; any of the tied diagonals is right.
+            assert!(worse(k) <= least * (1.0 + 1e-9), "cell {f}");
+            classes.insert(c.classes.cell_edge_class(f, k + 1));
+        }
+        assert_eq!(classes.len(), 3, "{classes:?}");
     }
 
     /// Corannulene: a pentagon ringed by five hexagons, a lattice defect around which the
