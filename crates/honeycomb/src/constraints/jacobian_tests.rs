@@ -151,10 +151,15 @@ fn wall_plane_families_match_finite_differences() {
     assert_families_match(&mut problem.families, &problem.x, &expected);
 }
 
-/// The quad cover's families (both patterns): normals, planarity, polyline fairness.
+/// The quad cover's families (every pattern): normals, planarity, polyline fairness, and the
+/// closeness that firms up where a vertex strays (as the jittered ones do).
 #[test]
 fn capping_families_match_finite_differences() {
-    for pattern in [QuadPattern::Zigzag, QuadPattern::Alternating] {
+    for pattern in [
+        QuadPattern::Zigzag,
+        QuadPattern::Alternating,
+        QuadPattern::Flattest,
+    ] {
         let (_, mesh, surface, conn) = saddle();
         let normals = initial_normals(&mesh, &conn, &surface);
         let options = QuadOptions {
@@ -191,6 +196,10 @@ fn capping_families_match_finite_differences() {
             "fairness_zigzag",
             "fairness_straight",
         ];
+        // Twice, so that the bounded closeness scales its far vertices by 4.
+        for family in problem.families.iter_mut() {
+            family.refresh(&problem.x);
+        }
         assert_families_match(&mut problem.families, &problem.x, &expected);
     }
 }

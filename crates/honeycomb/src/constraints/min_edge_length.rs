@@ -22,8 +22,8 @@ use crate::solve::Constraint;
 pub struct MinEdgeLength {
     pub layout: Layout,
     pub edges: Vec<[usize; 2]>,
-    /// L, in the solver's (normalized) units.
-    pub length: f64,
+    /// Per edge, its L, in the solver's (normalized) units.
+    pub lengths: Vec<f64>,
     /// Index of the first dummy in the unknown vector.
     pub dummy_start: usize,
     pub weight: f64,
@@ -42,11 +42,23 @@ impl MinEdgeLength {
         dummy_start: usize,
         weight: f64,
     ) -> MinEdgeLength {
+        let lengths = vec![length; edges.len()];
+        MinEdgeLength::with_lengths(layout, edges, lengths, dummy_start, weight)
+    }
+
+    /// Each edge at least its own length.
+    pub fn with_lengths(
+        layout: Layout,
+        edges: Vec<[usize; 2]>,
+        lengths: Vec<f64>,
+        dummy_start: usize,
+        weight: f64,
+    ) -> MinEdgeLength {
         let m = edges.len();
         MinEdgeLength {
             layout,
             edges,
-            length,
+            lengths,
             dummy_start,
             weight,
             seat: vec![0.0; m],
@@ -62,9 +74,17 @@ impl MinEdgeLength {
     /// shorter than L have theirs held at zero by the first refresh). Computed before the
     /// family is made: they are the block whose start it is given.
     pub fn initial_dummies(edges: &[[usize; 2]], length: f64, vertices: &[Vec3]) -> Vec<f64> {
-        edges
-            .iter()
-            .map(|&[a, b]| free_dummy(length, (vertices[a] - vertices[b]).norm_squared()))
+        MinEdgeLength::initial_dummies_for(edges, &vec![length; edges.len()], vertices)
+    }
+
+    /// As `initial_dummies`, each edge against its own length.
+    pub fn initial_dummies_for(
+        edges: &[[usize; 2]],
+        lengths: &[f64],
+        vertices: &[Vec3],
+    ) -> Vec<f64> {
+        (edges.iter().zip(lengths))
+            .map(|(&[a, b], &l)| free_dummy(l, (vertices[a] - vertices[b]).norm_squared()))
             .collect()
     }
 }
@@ -99,7 +119,7 @@ impl Constraint for MinEdgeLength {
         for (e, &[a, b]) in self.edges.iter().enumerate() {
             let d = self.layout.vertex_at(x, a) - self.layout.vertex_at(x, b);
             let dummy = self.dummy(x, e);
-            res[e] = d.norm_squared() - self.length * self.length - dummy * dummy;
+            res[e] = d.norm_squared() - self.lengths[e] * self.lengths[e] - dummy * dummy;
             let j = &mut jac[7 * e..7 * e + 7];
             put(&mut j[0..3], d * 2.0);
             put(&mut j[3..6], d * -2.0);
@@ -109,12 +129,13 @@ impl Constraint for MinEdgeLength {
     fn refresh(&mut self, x: &[f64]) {
         for (e, &[a, b]) in self.edges.iter().enumerate() {
             let l2 = (self.layout.vertex_at(x, a) - self.layout.vertex_at(x, b)).norm_squared();
-            let seated = if l2 < self.length * self.length {
+            let length = self.lengths[e];
+            let seated = if l2 < length * length {
                 self.held[e] = true;
                 0.0
             } else if self.held[e] {
                 self.held[e] = false;
-                free_dummy(self.length, l2)
+                free_dummy(length, l2)
             } else {
                 continue;
             };

@@ -3,6 +3,7 @@
 
 mod boundary_curve;
 mod closeness;
+mod closeness_bound;
 mod edge_vectors;
 mod fixed_normals;
 mod layout;
@@ -25,6 +26,7 @@ mod wall_plane;
 
 pub use boundary_curve::BoundaryCurve;
 pub use closeness::Closeness;
+pub use closeness_bound::BoundedCloseness;
 pub use edge_vectors::EdgeVectors;
 pub use fixed_normals::{FixedNormalRow, FixedNormals};
 pub use layout::Layout;

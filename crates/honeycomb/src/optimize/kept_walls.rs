@@ -3,7 +3,9 @@
 //! What moves is where the vertices sit on their walls: along the node axes (off S, priced by
 //! closeness) and, held harder, along S. Capping by quads is such a solve.
 
-use crate::constraints::{Closeness, FixedNormalRow, FixedNormals, Layout, TangentialHold};
+use crate::constraints::{
+    BoundedCloseness, Closeness, FixedNormalRow, FixedNormals, Layout, TangentialHold,
+};
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::{Constraint, Role};
@@ -27,7 +29,8 @@ pub(crate) fn realized_normals(h: &Honeycomb, conn: &Connectivity) -> Vec<Vec3> 
 
 /// The families every kept-walls solve has over the vertices of `normalized` (the first
 /// unknowns, as `layout` reads them): the kept walls, closeness to `surface` at weight
-/// `closeness` and the hold along S.
+/// `closeness` (firming up vertex by vertex past `bound`: see `BoundedCloseness`) and the hold
+/// along S.
 pub(crate) fn kept_wall_families<'a>(
     layout: Layout,
     normalized: &PolyMesh,
@@ -35,10 +38,12 @@ pub(crate) fn kept_wall_families<'a>(
     normals: &[Vec3],
     surface: &'a Surface,
     closeness: f64,
+    bound: f64,
 ) -> Vec<Box<dyn Constraint + 'a>> {
     let walls = (conn.edges.iter().zip(normals))
         .map(|(&[a, b], &normal)| FixedNormalRow { normal, a, b })
         .collect();
+    let closeness = BoundedCloseness::new(Closeness::new(layout, surface, closeness), bound);
     vec![
         Box::new(FixedNormals {
             name: "kept_walls",
@@ -47,7 +52,7 @@ pub(crate) fn kept_wall_families<'a>(
             weight: KEPT_WALLS_WEIGHT,
             role: Role::Condition,
         }),
-        Box::new(Closeness::new(layout, surface, closeness)),
+        Box::new(closeness),
         Box::new(TangentialHold::new(
             layout,
             &normalized.vertices,

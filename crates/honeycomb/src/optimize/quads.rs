@@ -73,10 +73,15 @@ const FAIRNESS_ROLE: Role = Role::Condition;
 const SIDES: [usize; 4] = [0, 1, 2, 3];
 
 /// Closeness to S, soft: the freedom to planarize lies mostly across S (each vertex slides
-/// along its node axis), and this is what it costs. Tried in turn until no vertex is farther
-/// than `MAX_DISTANCE_FROM_S` from S and no wall crosses itself (the last is kept if no wall
-/// crosses, else the honeycomb stays as it was).
-const CLOSENESS_WEIGHTS: [f64; 3] = [0.3, 1.0, 3.0];
+/// along its node axis), and this is what it costs. Each vertex firms up once it strays past
+/// `FIRM_PAST` (see `BoundedCloseness`), so that the budget goes where the quads need it. Tried
+/// from loose to firm until no vertex is farther than `MAX_DISTANCE_FROM_S` from S and no wall
+/// crosses itself or runs backwards (the last is kept if none does, else the honeycomb stays
+/// as it was).
+const CLOSENESS_WEIGHTS: [f64; 4] = [0.03, 0.3, 1.0, 3.0];
+/// Where a vertex starts to firm up, in mean edge lengths: short of `MAX_DISTANCE_FROM_S`,
+/// since one past it takes a few steps to come back.
+const FIRM_PAST: f64 = 0.08;
 /// How far capping may take a vertex from S, in mean edge lengths.
 const MAX_DISTANCE_FROM_S: f64 = 0.1;
 
@@ -165,8 +170,17 @@ pub(crate) fn cap(
         let wall = |p: &[Vec3], [a, b]: [usize; 2]| {
             [p[a], p[b], p[b] + axes[b] * depth, p[a] + axes[a] * depth]
         };
-        let kept = (conn.edges.iter())
-            .all(|&e| is_convex(wall(&vertices, e)) || !is_convex(wall(&normalized.vertices, e)));
+        // Nor may an edge run backwards along its wall: its node's walls would then leave the
+        // axis in another order, the node mirrored.
+        let along = |p: &[Vec3], e: usize| {
+            let [a, b] = conn.edges[e];
+            (p[b] - p[a]).dot(normals[e].cross(axes[a] + axes[b]))
+        };
+        let kept = (0..conn.num_edges()).all(|e| {
+            let convex = is_convex(wall(&vertices, conn.edges[e]))
+                || !is_convex(wall(&normalized.vertices, conn.edges[e]));
+            convex && along(&vertices, e) * along(&normalized.vertices, e) > 0.0
+        });
         let last = tries.peek().is_none();
         if last || (farthest <= MAX_DISTANCE_FROM_S && kept) {
             solve.iterations = iterations;
@@ -212,15 +226,21 @@ impl<'a> CappingProblem<'a> {
         for q in 0..cover.quads.len() {
             x.extend(best_fit_normal(cover.corners(&normalized.vertices, q), surface).to_array());
         }
-        let dummies = MinEdgeLength::initial_dummies(&conn.edges, MIN_EDGE, &normalized.vertices);
+        // An edge shorter than that already is held at its own length: pushed out to it, it
+        // could as well swing through its other end and run backwards.
+        let least: Vec<f64> = (conn.edges.iter())
+            .map(|&[a, b]| MIN_EDGE.min((normalized.vertices[a] - normalized.vertices[b]).norm()))
+            .collect();
+        let dummies = MinEdgeLength::initial_dummies_for(&conn.edges, &least, &normalized.vertices);
         let dummy_start = x.len();
         x.extend(dummies);
-        let mut families =
-            kept_wall_families(layout, normalized, conn, normals, surface, closeness);
-        families.push(Box::new(MinEdgeLength::new(
+        let mut families = kept_wall_families(
+            layout, normalized, conn, normals, surface, closeness, FIRM_PAST,
+        );
+        families.push(Box::new(MinEdgeLength::with_lengths(
             layout,
             conn.edges.clone(),
-            MIN_EDGE,
+            least,
             dummy_start,
             1.0,
         )));

@@ -1,0 +1,122 @@
+//! Closeness to S that is loose where a vertex is near S and firms up, vertex by vertex, where
+//! one strays past a bound: the rows of [`Closeness`], each vertex's pair scaled by a factor that
+//! doubles at every refresh that finds the vertex farther than `bound` and never shrinks.
+//!
+//! A solve that may take vertices off S up to a bound (capping by quads) then spends that bound
+//! where it helps, instead of holding every vertex as firmly as the one that strays most. The
+//! factors only grow, so they settle once every vertex is within the bound (or at the cap), and
+//! the solve with them.
+
+use super::closeness::Closeness;
+use crate::solve::Constraint;
+use crate::surface::Surface;
+use std::ops::Deref;
+
+/// A vertex's factor grows to at most this: its closeness then weighs as much as a firm one.
+const MAX_FACTOR: f64 = 64.0;
+
+pub struct BoundedCloseness<S> {
+    closeness: Closeness<S>,
+    /// Distance from S past which a vertex's factor doubles, in model units.
+    pub bound: f64,
+    /// Per vertex: the factor its two rows are scaled by.
+    factor: Vec<f64>,
+}
+
+impl<S: Deref<Target = Surface> + Send + Sync> BoundedCloseness<S> {
+    /// Closeness at `weight` for vertices within `bound` of S.
+    pub fn new(closeness: Closeness<S>, bound: f64) -> Self {
+        let n = closeness.layout.num_vertices;
+        BoundedCloseness {
+            closeness,
+            bound,
+            factor: vec![1.0; n],
+        }
+    }
+}
+
+impl<S: Deref<Target = Surface> + Send + Sync> Constraint for BoundedCloseness<S> {
+    fn name(&self) -> &str {
+        "closeness"
+    }
+    fn weight(&self) -> f64 {
+        self.closeness.weight
+    }
+    fn num_rows(&self) -> usize {
+        self.closeness.num_rows()
+    }
+    fn arity(&self) -> usize {
+        self.closeness.arity()
+    }
+    fn row_variables(&self, row: usize, vars: &mut [usize]) {
+        self.closeness.row_variables(row, vars)
+    }
+    fn refresh(&mut self, x: &[f64]) {
+        self.closeness.refresh(x);
+        let rows = self.closeness.num_rows();
+        let mut res = vec![0.0; rows];
+        let mut jac = vec![0.0; rows * self.closeness.arity()];
+        self.closeness.evaluate(x, &mut res, &mut jac);
+        for (v, f) in self.factor.iter_mut().enumerate() {
+            if res[2 * v].hypot(res[2 * v + 1]) > self.bound {
+                *f = (*f * 2.0).min(MAX_FACTOR);
+            }
+        }
+    }
+    fn evaluate(&self, x: &[f64], res: &mut [f64], jac: &mut [f64]) {
+        self.closeness.evaluate(x, res, jac);
+        let k = self.closeness.arity();
+        for (v, &f) in self.factor.iter().enumerate() {
+            for row in [2 * v, 2 * v + 1] {
+                res[row] *= f;
+                jac[row * k..(row + 1) * k].iter_mut().for_each(|j| *j *= f);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraints::Layout;
+    use crate::geometry::Vec3;
+    use crate::mesh::PolyMesh;
+
+    /// The scale of each vertex's distance row after `refreshes` refreshes at `points`.
+    fn scales(points: &[Vec3], bound: f64, refreshes: usize) -> Vec<f64> {
+        let surface = Surface::from_mesh(&PolyMesh::unit_square()).unwrap();
+        let layout = Layout::new(points.len(), 0);
+        let mut c = BoundedCloseness::new(Closeness::new(layout, &surface, 1.0), bound);
+        let x: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+        for _ in 0..refreshes {
+            c.refresh(&x);
+        }
+        let mut res = vec![0.0; c.num_rows()];
+        let mut jac = vec![0.0; c.num_rows() * c.arity()];
+        c.evaluate(&x, &mut res, &mut jac);
+        (0..points.len())
+            .map(|v| {
+                let scale = (res[2 * v] / points[v].z).abs();
+                // The Jacobian row is scaled alike: the plane's normal, times the scale.
+                assert!((jac[6 * v + 2].abs() - scale).abs() < 1e-12, "{jac:?}");
+                scale
+            })
+            .collect()
+    }
+
+    /// A vertex past the bound weighs twice as much after each refresh, up to the cap; one
+    /// within it keeps plain closeness.
+    #[test]
+    fn a_vertex_past_the_bound_firms_up_and_one_within_does_not() {
+        let points = [Vec3::new(0.5, 0.5, 0.1), Vec3::new(0.3, 0.6, 0.01)];
+        let scale = |refreshes| scales(&points, 0.05, refreshes);
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+        let (one, three, many) = (scale(1), scale(3), scale(20));
+        assert!(close(one[0], 2.0) && close(one[1], 1.0), "{one:?}");
+        assert!(close(three[0], 8.0) && close(three[1], 1.0), "{three:?}");
+        assert!(
+            close(many[0], MAX_FACTOR) && close(many[1], 1.0),
+            "{many:?}"
+        );
+    }
+}
