@@ -267,9 +267,10 @@ fn a_long_tightly_turning_border_loses_boundary_cells_not_the_walls_across() {
 }
 
 /// Roofs whose principal directions turn: a zigzag cover, one lattice direction throughout,
-/// keeps quads S twists along, while a flattest cover splits each cell along its own flattest
-/// diagonal and meets the quad floors (max 0.01, mean 0.004) with the honeycomb exact and every
-/// vertex within 0.1 mean edge lengths of S.
+/// keeps quads S twists along and misses a quad floor (max 0.01, mean 0.004), while a flattest
+/// cover splits each cell along its own flattest diagonal and meets both, at less than half
+/// the zigzag's mean, with the honeycomb exact and every vertex within 0.1 mean edge lengths
+/// of S.
 #[test]
 fn a_flattest_cover_meets_the_quad_floors_where_a_zigzag_does_not() {
     for roof in ["Neumunster.ply", "inspired_mesh.obj"] {
@@ -288,10 +289,14 @@ fn a_flattest_cover_meets_the_quad_floors_where_a_zigzag_does_not() {
                 number(report, "delta_face_avg"),
             )
         };
-        let ((max, avg), (zigzag_max, _)) = (faces(&flattest), faces(&zigzag));
+        let ((max, avg), (zigzag_max, zigzag_avg)) = (faces(&flattest), faces(&zigzag));
         assert_eq!(flattest["quad_pattern"], "flattest", "{roof}");
         assert!(max <= 0.01 && avg <= 0.004, "{roof}: {max} / {avg}");
-        assert!(zigzag_max > 0.01, "{roof}: zigzag {zigzag_max}");
+        assert!(
+            zigzag_max > 0.01 || zigzag_avg > 0.004,
+            "{roof}: zigzag {zigzag_max} / {zigzag_avg}"
+        );
+        assert!(avg < 0.5 * zigzag_avg, "{roof}: {avg} against {zigzag_avg}");
         assert!(number(&flattest, "omega_max_deg") < 0.05, "{roof}");
         assert!(number(&flattest, "delta_max") < 1e-5, "{roof}");
         assert!(number(&flattest, "closeness_max") <= 0.1, "{roof}");

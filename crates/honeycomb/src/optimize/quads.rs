@@ -81,7 +81,7 @@ const SIDES: [usize; 4] = [0, 1, 2, 3];
 const CLOSENESS_WEIGHTS: [f64; 4] = [0.03, 0.3, 1.0, 3.0];
 /// Where a vertex starts to firm up, in mean edge lengths: short of `MAX_DISTANCE_FROM_S`,
 /// since one past it takes a few steps to come back.
-const FIRM_PAST: f64 = 0.08;
+const FIRM_PAST: f64 = 0.09;
 /// How far capping may take a vertex from S, in mean edge lengths.
 const MAX_DISTANCE_FROM_S: f64 = 0.1;
 

@@ -23,8 +23,9 @@
 //!   line up across cells, but each is still continued at both ends by the edge beyond it.
 //! - `Flattest`: every cell splits along whichever diagonal leaves its two quads flattest as
 //!   the honeycomb stands. No polyline runs straight for long, but where S twists along every
-//!   lattice direction in turn (most freeform roofs) the quads start two to three times
-//!   flatter than any one pattern's, and the capping takes them much further.
+//!   lattice direction in turn (most freeform roofs) the quads start flatter than any one
+//!   pattern's, and the capping, no longer fighting a twist passed along columns of cells,
+//!   takes them much further.
 
 use super::quad_planarity;
 use crate::geometry::Vec3;
