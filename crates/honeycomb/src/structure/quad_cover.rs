@@ -267,15 +267,11 @@ impl QuadCover {
                 QuadPattern::Alternating => 1 + parity[f],
                 QuadPattern::Flattest => flattest_diagonal(mesh, face, offset),
             };
-            // Edges k0 and k0 + 3 have the diagonal's class; it runs from face[k0 - 1].
-            let k0 = (class as usize + 3 - offset as usize) % 3;
-            let j = (k0 + 5) % 6;
-            let at = |i: usize| face[(j + i) % 6];
+            let halves = halves(face, class, offset);
             let q = cover.quads.len();
-            cover.quads.push([at(0), at(1), at(2), at(3)]);
-            cover.quads.push([at(3), at(4), at(5), at(0)]);
+            cover.quads.extend(halves);
             cover.cell_quads[f] = Some([q, q + 1]);
-            cover.diagonals[f] = Some([at(0), at(3)]);
+            cover.diagonals[f] = Some([halves[0][0], halves[0][3]]);
         }
         cover.zigzag_runs = zigzag_runs(conn, &cover.classes);
         cover.straight_runs = straight_runs(mesh, conn, &cover.diagonals);
@@ -300,19 +296,24 @@ impl QuadCover {
     }
 }
 
+/// The two quads hexagon `face` (its edge 0 of class `offset`) splits into along its diagonal of
+/// class `class`, the diagonal from the first corner of the first quad to its last.
+fn halves(face: &[usize], class: u8, offset: u8) -> [[usize; 4]; 2] {
+    // Edges k0 and k0 + 3 have the diagonal's class; it runs from face[k0 - 1].
+    let k0 = (class as usize + 3 - offset as usize) % 3;
+    let j = (k0 + 5) % 6;
+    let at = |i: usize| face[(j + i) % 6];
+    [[at(0), at(1), at(2), at(3)], [at(3), at(4), at(5), at(0)]]
+}
+
 /// The class of the diagonal of hexagon `face` whose two quads are flattest (the larger of their
 /// planarities least).
 fn flattest_diagonal(mesh: &PolyMesh, face: &[usize], offset: u8) -> u8 {
     best(|class| {
-        let k0 = (class + 3 - offset as usize) % 3;
-        let j = (k0 + 5) % 6;
-        let at = |i: usize| mesh.vertices[face[(j + i) % 6]];
-        quad_planarity([at(0), at(1), at(2), at(3)]).max(quad_planarity([
-            at(3),
-            at(4),
-            at(5),
-            at(0),
-        ]))
+        halves(face, class as u8, offset)
+            .map(|q| quad_planarity(q.map(|v| mesh.vertices[v])))
+            .into_iter()
+            .fold(0.0, f64::max)
     })
 }
 
