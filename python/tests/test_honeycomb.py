@@ -222,10 +222,16 @@ def test_a_callback_raising_cancels_with_its_error(surface):
 
 
 def test_ctrl_c_raises_keyboard_interrupt(surface):
-    callback, calls = stop_after(1, lambda: signal.raise_signal(signal.SIGINT))
-    with pytest.raises(KeyboardInterrupt):
-        honeycomb.pipeline(surface, cells=CELLS, progress=callback)
-    assert len(calls) == 2
+    # Python leaves Ctrl-C ignored when it starts ignored (under a shell's background job):
+    # the test installs the handler a terminal would have.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        callback, calls = stop_after(1, lambda: signal.raise_signal(signal.SIGINT))
+        with pytest.raises(KeyboardInterrupt):
+            honeycomb.pipeline(surface, cells=CELLS, progress=callback)
+        assert len(calls) == 2
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def surface_base(surface):
