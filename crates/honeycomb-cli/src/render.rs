@@ -3,7 +3,9 @@
 use honeycomb::analysis::spherical_image;
 use honeycomb::export::read_structure;
 use honeycomb::mesh::{read_mesh, write_atomically};
-use honeycomb::render::{check_width, spherical_scene, walls_scene, Coloring, View, WallMeasure};
+use honeycomb::render::{
+    check_width, quads_scene, spherical_scene, walls_scene, Coloring, View, WallMeasure,
+};
 use honeycomb::structure::measure as measure_structure;
 use honeycomb::surface::Surface;
 use honeycomb::{Error, Result};
@@ -31,8 +33,12 @@ pub struct Args {
     #[arg(long)]
     pub surface: Option<PathBuf>,
     /// Draw the spherical image instead (node axes on the unit sphere, cells by area).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "quads")]
     pub spherical: bool,
+    /// Draw the quads that cap the honeycomb instead (DIR/quads.obj, written with --quads),
+    /// each by its planarity delta_face, red above 0.01.
+    #[arg(long, conflicts_with = "color")]
+    pub quads: bool,
     /// With --spherical: areas within this of 0 (steradians) count as zero.
     #[arg(long, default_value_t = 1e-3)]
     pub tolerance: f64,
@@ -64,7 +70,19 @@ pub fn run(args: Args) -> Result<()> {
         || args.dir.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let (scene, what) = if args.spherical {
+    let (scene, what) = if args.quads {
+        let path = args.dir.join("quads.obj");
+        if let Ok(false) = path.try_exists() {
+            return Err(Error::Parameter(format!(
+                "--quads draws the quads that cap the honeycomb, and {} does not exist: make \
+                 the honeycomb with --quads zigzag, alternating or flattest",
+                path.display()
+            )));
+        }
+        let cover = read_mesh(&path)?.mesh;
+        let camera = args.view.camera(&h.base.vertices);
+        quads_scene(&cover, format!("{name}: quads"), camera, args.width)
+    } else if args.spherical {
         crate::analyse::check_tolerance(args.tolerance)?;
         let image = spherical_image(&h.base.faces, &h.axes, args.tolerance);
         let what = format!(
@@ -105,6 +123,7 @@ pub fn run(args: Args) -> Result<()> {
             measure: measure.name(),
             meaning: measure.meaning(),
             unit: measure.unit(),
+            items: "walls",
             per_wall: &per_wall,
             tolerance: measure.tolerance(),
         };

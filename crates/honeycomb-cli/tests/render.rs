@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{assert_clean_failure, demo, read_json, run, TempDir};
+use common::{assert_clean_failure, demo, quad_delta, read_json, read_written_mesh, run, TempDir};
 use std::collections::HashSet;
 
 fn fills(svg: &str) -> Vec<String> {
@@ -296,4 +296,75 @@ fn png_pictures_have_the_asked_size_colour_and_text() {
             assert!(colours.len() >= 20, "only {} colours", colours.len());
         }
     }
+}
+
+/// `render --quads` draws the quads of quads.obj, one polygon each, red where a quad is less
+/// flat than 0.01 and calm elsewhere; the verdict counts those over 0.01 as the written quads
+/// measure. Without quads.obj it says how to make them.
+#[test]
+fn the_quads_picture_shows_which_quads_are_not_flat_enough() {
+    let tmp = TempDir::new("render-quads");
+    let dir = tmp.join("q");
+    demo(&dir, &["--vertices", "600", "--quads", "flattest"]);
+    let cover = read_written_mesh(&dir.join("quads.obj"));
+    let deltas: Vec<f64> = (cover.faces.iter())
+        .filter(|f| f.len() == 4)
+        .map(|f| quad_delta([0, 1, 2, 3].map(|k| cover.vertices[f[k]])))
+        .collect();
+    let over = deltas.iter().filter(|&&d| d > 0.01).count();
+    // A few quads bent beyond the floor show red.
+    let mut bent = cover.clone();
+    for v in bent.faces[0].clone() {
+        bent.vertices[v].z += 0.3 * ((v % 3) as f64 - 1.0);
+    }
+    for (name, mesh) in [("flat", &cover), ("bent", &bent)] {
+        let d = tmp.join(name);
+        std::fs::create_dir_all(&d).unwrap();
+        for f in ["structure.json", "base.obj", "offset.obj"] {
+            std::fs::copy(dir.join(f), d.join(f)).unwrap();
+        }
+        let mut file = std::fs::File::create(d.join("quads.obj")).unwrap();
+        honeycomb::mesh::io::write_obj(&mut file, mesh).unwrap();
+    }
+    let out = tmp.join("quads.svg");
+    let r = run([
+        "render",
+        tmp.join("flat").to_str().unwrap(),
+        "--quads",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", common::stderr(&r));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let quads = svg.lines().filter(|l| l.contains("class=\"quad\"")).count();
+    assert_eq!(quads, deltas.len());
+    let verdict = if over == 0 {
+        format!("all {} quads within 0.01", deltas.len())
+    } else {
+        format!("{over} of {} quads over 0.01", deltas.len())
+    };
+    assert!(svg.contains(&verdict), "{verdict}");
+    assert!(svg.contains("delta_face"), "legend");
+    assert_eq!(fills(&svg).iter().filter(|c| *c == RED).count(), over);
+    let r = run([
+        "render",
+        tmp.join("bent").to_str().unwrap(),
+        "--quads",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", common::stderr(&r));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(fills(&svg).iter().filter(|c| *c == RED).count() > over);
+    // A honeycomb without quads: one clear error naming the missing file and the option.
+    let plain = tmp.join("plain");
+    demo(&plain, &["--vertices", "300"]);
+    let r = run([
+        "render",
+        plain.to_str().unwrap(),
+        "--quads",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_clean_failure(&r, &["quads.obj", "--quads zigzag"], None);
 }

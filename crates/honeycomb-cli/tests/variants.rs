@@ -4,19 +4,10 @@
 mod common;
 
 use common::{
-    assert_clean_failure, demo, mesh_edges, number, read_json, read_written_mesh, run, run_demo,
-    stderr, stdout, TempDir,
+    assert_clean_failure, demo, mesh_edges, number, quad_delta, read_json, read_written_mesh, run,
+    run_demo, stderr, stdout, TempDir,
 };
 use honeycomb::geometry::Vec3;
-
-/// Distance between the diagonals of a quad over its mean edge length (DESIGN.md section 3).
-fn quad_delta(p: [Vec3; 4]) -> f64 {
-    let (d1, d2) = (p[2] - p[0], p[3] - p[1]);
-    let n = d1.cross(d2);
-    let distance = (p[1] - p[0]).dot(n).abs() / n.norm();
-    let mean_edge = (0..4).map(|k| (p[(k + 1) % 4] - p[k]).norm()).sum::<f64>() / 4.0;
-    distance / mean_edge
-}
 
 #[test]
 fn parallel_meshes_have_parallel_edges_and_the_asked_depth() {

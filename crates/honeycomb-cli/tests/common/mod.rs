@@ -269,3 +269,13 @@ pub fn mesh_edges(mesh: &honeycomb::mesh::PolyMesh) -> Vec<[usize; 2]> {
     }
     set.into_iter().collect()
 }
+
+/// Distance between the diagonals of a quad over its mean edge length (DESIGN.md section 3),
+/// computed here from the corners, independently of the library.
+pub fn quad_delta(p: [honeycomb::geometry::Vec3; 4]) -> f64 {
+    let (d1, d2) = (p[2] - p[0], p[3] - p[1]);
+    let n = d1.cross(d2);
+    let distance = (p[1] - p[0]).dot(n).abs() / n.norm();
+    let mean_edge = (0..4).map(|k| (p[(k + 1) % 4] - p[k]).norm()).sum::<f64>() / 4.0;
+    distance / mean_edge
+}

@@ -13,7 +13,7 @@ use crate::optimize::{
 use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Pipelined, Strategy, Walls};
 use crate::reciprocal::{AcrossOptions, AxisTargets, SHADING_TILTS};
 use crate::report::Report;
-use crate::structure::{axes_measures, face_measures, measure, QuadPattern};
+use crate::structure::{axes_measures, face_measures, measure, QuadPattern, FLAT_QUAD};
 use crate::surface::Surface;
 use crate::Vec3;
 use std::time::Instant;
@@ -207,11 +207,6 @@ pub fn optimize(
     report.seconds = start.elapsed().as_secs_f64();
     Ok(outcome(optimized, report, base.mesh().clone(), None))
 }
-
-/// A quad whose diagonals pass within this share of its mean edge length of each other is flat
-/// enough for a zigzag or flattest cover to keep its grid along S's principal directions without trying the
-/// boundary's.
-const FLAT_QUAD: f64 = 0.01;
 
 /// What a variant's solve is called in [`Step::Iteration`].
 const VARIANT_SOLVE: &str = "guided projection";

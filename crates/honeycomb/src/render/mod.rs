@@ -1,9 +1,10 @@
-//! Pictures of honeycombs for people: colour-coded walls (paper Fig. 8) with a colour bar, and
-//! the spherical image (Figs. 4-5).
+//! Pictures of honeycombs for people: colour-coded walls (paper Fig. 8) with a colour bar, the
+//! quads that cap them, and the spherical image (Figs. 4-5).
 
 mod colormap;
 mod legend;
 mod measure;
+mod quads;
 mod scene;
 mod spherical;
 mod view;
@@ -12,10 +13,11 @@ mod walls;
 pub use colormap::color;
 pub use legend::Ramp;
 pub use measure::WallMeasure;
+pub use quads::quads_scene;
 pub use scene::{escape, Scene, Shape, TextStyle};
 pub use spherical::spherical_scene;
 pub use view::{Camera, View};
-pub use walls::{walls_scene, Coloring};
+pub use walls::{polygons_scene, walls_scene, Coloring};
 
 /// The narrowest picture whose drawing, colour bar and legend all fit, and the widest one drawn: a PNG is held in
 /// memory about four times over at 3 bytes a pixel (0.8 GB at 8000 pixels square).

@@ -1,6 +1,6 @@
-//! The honeycomb's walls as a picture a designer reads at a glance: wall quads filled by a
-//! measure (painter's order, far walls first), a title, a verdict against the measure's
-//! tolerance, a colour bar with ticks and unit, an axis triad and a scale bar.
+//! The honeycomb's walls (or the quads that cap it) as a picture a designer reads at a glance:
+//! polygons filled by a measure (painter's order, far ones first), a title, a verdict against
+//! the measure's tolerance, a colour bar with ticks and unit, an axis triad and a scale bar.
 
 use super::colormap::{nice_ticks, OVER};
 use super::legend::{axis_triad, colour_bar, scale_bar, Ramp};
@@ -10,7 +10,7 @@ use crate::error::rounded;
 use crate::geometry::Vec3;
 use crate::structure::Honeycomb;
 
-/// What the colours mean, with one value per wall.
+/// What the colours mean, with one value per wall (or per quad).
 pub struct Coloring<'a> {
     /// The picture's title: what is drawn and by which measure.
     pub title: String,
@@ -18,6 +18,8 @@ pub struct Coloring<'a> {
     pub measure: &'a str,
     pub meaning: &'a str,
     pub unit: &'a str,
+    /// What is drawn, in the plural ("walls", "quads"), for the verdict.
+    pub items: &'a str,
     pub per_wall: &'a [f64],
     /// Values above it are flagged red; the calm ramp spans 0 to it.
     pub tolerance: Option<f64>,
@@ -27,7 +29,7 @@ impl Coloring<'_> {
     /// "all 2334 walls within 0.001" or "17 of 2334 walls over 0.1 deg (worst 3.2 deg)"; for a
     /// measure without a tolerance, its mean and largest value.
     pub fn verdict(&self) -> String {
-        let n = self.per_wall.len();
+        let (n, items) = (self.per_wall.len(), self.items);
         let unit = if self.unit.is_empty() {
             String::new()
         } else {
@@ -38,10 +40,10 @@ impl Coloring<'_> {
             Some(t) => {
                 let over = self.over(t);
                 if over == 0 {
-                    format!("all {n} walls within {}{unit}", rounded(t, 3))
+                    format!("all {n} {items} within {}{unit}", rounded(t, 3))
                 } else {
                     format!(
-                        "{over} of {n} walls over {}{unit} (worst {}{unit})",
+                        "{over} of {n} {items} over {}{unit} (worst {}{unit})",
                         rounded(t, 3),
                         rounded(worst, 3)
                     )
@@ -50,7 +52,7 @@ impl Coloring<'_> {
             None => {
                 let mean = self.per_wall.iter().sum::<f64>() / n.max(1) as f64;
                 format!(
-                    "{n} walls: mean {}{unit}, largest {}{unit}",
+                    "{n} {items}: mean {}{unit}, largest {}{unit}",
                     rounded(mean, 3),
                     rounded(worst, 3)
                 )
@@ -89,16 +91,28 @@ const MARGIN: f64 = 20.0;
 const TOP: f64 = 58.0;
 const BOTTOM: f64 = 64.0;
 
-/// The picture, `width` pixels wide (the height follows the model's aspect).
+/// The walls of `h`, each the quad over its edge, `width` pixels wide (the height follows the
+/// model's aspect).
 pub fn walls_scene(h: &Honeycomb, coloring: &Coloring, camera: Camera, width: u32) -> Scene {
-    let base: Vec<Vec3> = h.base.vertices.iter().map(|&p| camera.project(p)).collect();
-    let offset: Vec<Vec3> = h
-        .offset
-        .vertices
+    let walls: Vec<Vec<Vec3>> = (0..h.edges.len()).map(|e| h.wall(e).to_vec()).collect();
+    polygons_scene(&walls, "wall", coloring, camera, width)
+}
+
+/// `polygons` (model coordinates, one value each in `coloring`; `class` names them in an SVG)
+/// filled by their values, far ones first, with the title, verdict and legends, `width` pixels
+/// wide.
+pub fn polygons_scene(
+    polygons: &[Vec<Vec3>],
+    class: &'static str,
+    coloring: &Coloring,
+    camera: Camera,
+    width: u32,
+) -> Scene {
+    let projected: Vec<Vec<Vec3>> = polygons
         .iter()
-        .map(|&p| camera.project(p))
+        .map(|p| p.iter().map(|&q| camera.project(q)).collect())
         .collect();
-    let (lo, hi) = base.iter().chain(&offset).fold(
+    let (lo, hi) = projected.iter().flatten().fold(
         (
             Vec3::new(f64::MAX, f64::MAX, 0.0),
             Vec3::new(f64::MIN, f64::MIN, 0.0),
@@ -116,36 +130,32 @@ pub fn walls_scene(h: &Honeycomb, coloring: &Coloring, camera: Camera, width: u3
         )
     };
 
-    // Strokes thin with the cells, so that at thousands of cells the colours still show.
-    let edge_px = h
-        .edges
+    // Strokes thin with the polygons, so that at thousands of them the colours still show.
+    let sides = projected.iter().map(|p| p.len()).sum::<usize>().max(1);
+    let side_px = projected
         .iter()
-        .map(|&[a, b]| {
-            let (p, q) = (to_screen(base[a]), to_screen(base[b]));
+        .flat_map(|p| (0..p.len()).map(move |i| (p[i], p[(i + 1) % p.len()])))
+        .map(|(a, b)| {
+            let (p, q) = (to_screen(a), to_screen(b));
             (q.0 - p.0).hypot(q.1 - p.1)
         })
         .sum::<f64>()
-        / h.edges.len().max(1) as f64;
-    let stroke = (0.04 * edge_px).clamp(0.1, 0.8);
+        / sides as f64;
+    let stroke = (0.04 * side_px).clamp(0.1, 0.8);
 
     let ramp = coloring.ramp();
-    let mut order: Vec<usize> = (0..h.edges.len()).collect();
-    let depth = |e: usize| {
-        let [a, b] = h.edges[e];
-        base[a].z + base[b].z + offset[a].z + offset[b].z
-    };
-    order.sort_by(|&e, &f| depth(e).total_cmp(&depth(f)));
+    let mut order: Vec<usize> = (0..projected.len()).collect();
+    let depth =
+        |i: usize| projected[i].iter().map(|p| p.z).sum::<f64>() / projected[i].len() as f64;
+    order.sort_by(|&i, &j| depth(i).total_cmp(&depth(j)));
 
     let mut scene = Scene::new(width, height as u32);
-    for e in order {
-        let [a, b] = h.edges[e];
+    for i in order {
         scene.shapes.push(Shape::Polygon {
-            points: [base[a], base[b], offset[b], offset[a]]
-                .map(to_screen)
-                .to_vec(),
-            fill: Some(ramp.colour(coloring.per_wall[e])),
+            points: projected[i].iter().map(|&p| to_screen(p)).collect(),
+            fill: Some(ramp.colour(coloring.per_wall[i])),
             stroke: Some(((40, 40, 40), stroke)),
-            class: Some("wall"),
+            class: Some(class),
             opacity: 1.0,
         });
     }

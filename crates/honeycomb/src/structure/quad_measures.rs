@@ -5,6 +5,10 @@ use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
 use serde::Serialize;
 
+/// A quad whose diagonals pass within this share of its mean edge length of each other is flat
+/// (the floor asked of a cover's worst quad).
+pub const FLAT_QUAD: f64 = 0.01;
+
 #[derive(Clone, Debug, Serialize)]
 pub struct FaceMeasures {
     /// Distance between a quad's diagonals over its mean edge length.
