@@ -104,6 +104,9 @@ struct VariantFigures {
     delta_face_max: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     delta_face_avg: Option<f64>,
+    /// Quads: the capping's own iterations (`iterations_total` counts the honeycomb's too).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    capping_iterations: Option<usize>,
     /// Parallel meshes: the largest angle between an edge of M and its edge of M'.
     #[serde(skip_serializing_if = "Option::is_none")]
     beta_max_deg: Option<f64>,
@@ -199,14 +202,15 @@ pub fn run(args: RoofsArgs) -> Result<()> {
 fn run_variants(args: &RoofsArgs, surfaces: &[(String, Source)]) -> Result<()> {
     if !args.json {
         println!(
-            "{:<28} {:<11} {:>6} {:>6} {:>7} {:>4} {:>9} {:>9} {:>15} {:>15} {:>7} {:>13} {:>6}  \
-             status",
+            "{:<28} {:<11} {:>6} {:>6} {:>7} {:>4} {:>4} {:>9} {:>9} {:>15} {:>15} {:>7} {:>13} \
+             {:>6}  status",
             "surface",
             "variant",
             "asked",
             "cells",
             "T (s)",
             "#It",
+            "cap",
             "omega_max",
             "delta_max",
             "df max bef/aft",
@@ -243,10 +247,11 @@ fn print_variant_row(row: &Row, json: bool) -> Result<()> {
         _ => "-".into(),
     };
     println!(
-        "{:>6} {:>7.2} {:>4} {:>9.1e} {:>9.1e} {:>15} {:>15} {:>7} {:>13} {:>6.3}  {}",
+        "{:>6} {:>7.2} {:>4} {:>4} {:>9.1e} {:>9.1e} {:>15} {:>15} {:>7} {:>13} {:>6.3}  {}",
         f.cells,
         f.seconds,
         f.iterations_total,
+        v.capping_iterations.map_or("-".into(), |n| n.to_string()),
         f.omega_max_deg,
         f.delta_max,
         pair(v.delta_face_max_before, v.delta_face_max),
@@ -365,6 +370,7 @@ fn variant_figures(made: &Outcome) -> VariantFigures {
         v.delta_face_avg = Some(q.faces.delta_face_avg);
         v.delta_face_max_before = q.capping.as_ref().map(|c| c.delta_face_max_before);
         v.delta_face_avg_before = q.capping.as_ref().map(|c| c.delta_face_avg_before);
+        v.capping_iterations = q.capping.as_ref().map(|c| c.iterations);
     }
     v
 }

@@ -276,6 +276,51 @@ fn bench_roofs_has_a_row_per_surface() {
     assert!(stdout(&table).lines().next().unwrap().contains("axis"));
 }
 
+/// `bench --roofs DIR --variants` has a row per surface and variant; a quad row gives the
+/// planarity before and after capping and the capping's own iterations, within the total.
+#[test]
+fn bench_roofs_variants_has_a_row_per_variant() {
+    let tmp = TempDir::new("walls-bench-variants");
+    let roofs = tmp.join("roofs");
+    std::fs::create_dir_all(&roofs).unwrap();
+    std::fs::copy(surface_file(&tmp, "dome"), roofs.join("dome.obj")).unwrap();
+    let out = run([
+        "bench",
+        "--roofs",
+        roofs.to_str().unwrap(),
+        "--variants",
+        "--cells",
+        "200",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let rows: Vec<serde_json::Value> = stdout(&out)
+        .lines()
+        .map(|l| parse_json(l, "a bench row"))
+        .collect();
+    let variants: Vec<&str> = rows.iter().filter_map(|r| r["variant"].as_str()).collect();
+    assert_eq!(
+        variants,
+        [
+            "zigzag",
+            "alternating",
+            "flattest",
+            "parallel",
+            "sun 30/225",
+            "sun 60/45"
+        ]
+    );
+    for row in rows.iter().take(3) {
+        assert_eq!(row["status"], "ok", "{row}");
+        let capping = number(row, "capping_iterations");
+        assert!(
+            capping >= 1.0 && capping < number(row, "iterations_total"),
+            "{row}"
+        );
+        assert!(number(row, "delta_face_max") <= number(row, "delta_face_max_before"));
+    }
+}
+
 /// `pipeline --parallel` writes M and M' on walls across S with their edges parallel, as the
 /// written meshes show; `--walls free` is the paper's simultaneous solve instead.
 #[test]
