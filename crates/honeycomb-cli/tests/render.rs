@@ -327,15 +327,21 @@ fn the_quads_picture_shows_which_quads_are_not_flat_enough() {
         honeycomb::mesh::io::write_obj(&mut file, mesh).unwrap();
     }
     let out = tmp.join("quads.svg");
-    let r = run([
-        "render",
-        tmp.join("flat").to_str().unwrap(),
-        "--quads",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(r.status.success(), "{}", common::stderr(&r));
-    let svg = std::fs::read_to_string(&out).unwrap();
+    let render = |dir: &std::path::Path| {
+        run([
+            "render",
+            dir.to_str().unwrap(),
+            "--quads",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+    };
+    let picture = |dir: &std::path::Path| {
+        let r = render(dir);
+        assert!(r.status.success(), "{}", common::stderr(&r));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let svg = picture(&tmp.join("flat"));
     let quads = svg.lines().filter(|l| l.contains("class=\"quad\"")).count();
     assert_eq!(quads, deltas.len());
     let verdict = if over == 0 {
@@ -346,25 +352,10 @@ fn the_quads_picture_shows_which_quads_are_not_flat_enough() {
     assert!(svg.contains(&verdict), "{verdict}");
     assert!(svg.contains("delta_face"), "legend");
     assert_eq!(fills(&svg).iter().filter(|c| *c == RED).count(), over);
-    let r = run([
-        "render",
-        tmp.join("bent").to_str().unwrap(),
-        "--quads",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(r.status.success(), "{}", common::stderr(&r));
-    let svg = std::fs::read_to_string(&out).unwrap();
+    let svg = picture(&tmp.join("bent"));
     assert!(fills(&svg).iter().filter(|c| *c == RED).count() > over);
     // A honeycomb without quads: one clear error naming the missing file and the option.
     let plain = tmp.join("plain");
     demo(&plain, &["--vertices", "300"]);
-    let r = run([
-        "render",
-        plain.to_str().unwrap(),
-        "--quads",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert_clean_failure(&r, &["quads.obj", "--quads zigzag"], None);
+    assert_clean_failure(&render(&plain), &["quads.obj", "--quads zigzag"], None);
 }

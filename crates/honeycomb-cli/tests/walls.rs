@@ -221,6 +221,25 @@ fn principal_spreads_deg(axes: &[[f64; 3]]) -> (f64, f64) {
     (deg(half + root), deg(half - root))
 }
 
+/// The rows of `bench --roofs DIR --cells 200 --json EXTRA`.
+fn bench_rows(roofs: &Path, extra: &[&str]) -> Vec<serde_json::Value> {
+    let mut args = vec![
+        "bench",
+        "--roofs",
+        roofs.to_str().unwrap(),
+        "--cells",
+        "200",
+        "--json",
+    ];
+    args.extend_from_slice(extra);
+    let out = run(&args);
+    assert!(out.status.success(), "{}", stderr(&out));
+    stdout(&out)
+        .lines()
+        .map(|l| parse_json(l, "a bench row"))
+        .collect()
+}
+
 /// `bench --roofs DIR` has a row per surface in DIR (a base mesh skipped with its reason) and
 /// one JSON object per row with `--json`; without the default folder it says so and goes on.
 #[test]
@@ -233,19 +252,7 @@ fn bench_roofs_has_a_row_per_surface() {
     let src = tmp.join("src");
     demo(&src, &["--vertices", "200"]);
     std::fs::copy(src.join("input_base.obj"), roofs.join("hexes.obj")).unwrap();
-    let out = run([
-        "bench",
-        "--roofs",
-        roofs.to_str().unwrap(),
-        "--cells",
-        "200",
-        "--json",
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    let rows: Vec<serde_json::Value> = stdout(&out)
-        .lines()
-        .map(|l| parse_json(l, "a bench row"))
-        .collect();
+    let rows = bench_rows(&roofs, &[]);
     assert_eq!(rows.len(), 2, "{rows:?}");
     let dome_row = rows.iter().find(|r| r["surface"] == "dome.obj").unwrap();
     assert_eq!(dome_row["status"], "ok", "{dome_row}");
@@ -284,20 +291,7 @@ fn bench_roofs_variants_has_a_row_per_variant() {
     let roofs = tmp.join("roofs");
     std::fs::create_dir_all(&roofs).unwrap();
     std::fs::copy(surface_file(&tmp, "dome"), roofs.join("dome.obj")).unwrap();
-    let out = run([
-        "bench",
-        "--roofs",
-        roofs.to_str().unwrap(),
-        "--variants",
-        "--cells",
-        "200",
-        "--json",
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
-    let rows: Vec<serde_json::Value> = stdout(&out)
-        .lines()
-        .map(|l| parse_json(l, "a bench row"))
-        .collect();
+    let rows = bench_rows(&roofs, &["--variants"]);
     let variants: Vec<&str> = rows.iter().filter_map(|r| r["variant"].as_str()).collect();
     assert_eq!(
         variants,
