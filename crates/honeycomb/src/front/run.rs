@@ -13,7 +13,9 @@ use crate::optimize::{
 use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Pipelined, Strategy, Walls};
 use crate::reciprocal::{AcrossOptions, AxisTargets, SHADING_TILTS};
 use crate::report::Report;
-use crate::structure::{axes_measures, face_measures, measure, QuadPattern, FLAT_QUAD};
+use crate::structure::{
+    axes_measures, face_measures, measure, QuadPattern, FLAT_QUAD, FLAT_QUAD_MEAN,
+};
 use crate::surface::Surface;
 use crate::Vec3;
 use std::time::Instant;
@@ -244,6 +246,7 @@ fn cap_with_quads(
     let cover = (capped.quad_cover.as_ref()).expect("a capped honeycomb has its cover");
     report.capped(&capped, &measures, &face_measures(&uncapped, &cover.quads));
     report.notes.extend(thinner);
+    report.notes.extend(flatter_pattern(&report));
     if capped.honeycomb.base.vertices == uncapped {
         report.notes.push(
             "the capping crossed a wall at every closeness to S it tried; the quads cap the \
@@ -252,6 +255,24 @@ fn cap_with_quads(
         );
     }
     Ok((capped, report))
+}
+
+/// Where a patterned cover stays less flat than a glazed one asks, a note pointing to the cover
+/// whose cells pick their own diagonals.
+fn flatter_pattern(report: &Report) -> Option<String> {
+    let q = report.quads.as_ref()?;
+    let f = &q.faces;
+    let short = f.delta_face_max > FLAT_QUAD || f.delta_face_avg > FLAT_QUAD_MEAN;
+    (short && q.quad_pattern != QuadPattern::Flattest).then(|| {
+        format!(
+            "the {} cover's quads are {} (worst) and {} (mean) from planar, above the \
+             {FLAT_QUAD} and {FLAT_QUAD_MEAN} a glazed cover asks: --quads flattest, whose cells \
+             each take their flattest diagonal, is flatter where S's principal directions turn",
+            q.quad_pattern.label(),
+            rounded(f.delta_face_max, 4),
+            rounded(f.delta_face_avg, 4)
+        )
+    })
 }
 
 /// The honeycomb `optimized` (reported in `report`) as a shading device: its walls as deep as

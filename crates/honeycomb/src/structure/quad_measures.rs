@@ -8,6 +8,8 @@ use serde::Serialize;
 /// A quad whose diagonals pass within this share of its mean edge length of each other is flat
 /// (the floor asked of a cover's worst quad).
 pub const FLAT_QUAD: f64 = 0.01;
+/// The floor asked of a cover's mean quad, in the same measure.
+pub const FLAT_QUAD_MEAN: f64 = 0.004;
 
 #[derive(Clone, Debug, Serialize)]
 pub struct FaceMeasures {

@@ -214,6 +214,15 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
             assert!(faces.delta_face_max <= 0.01, "{faces:?}");
             assert!(faces.delta_face_avg <= 0.004, "{faces:?}");
         }
+        // A patterned cover short of the floors points to the flattest one.
+        let hint = (out.report.notes.iter()).any(|n| n.contains("--quads flattest"));
+        let short = faces.delta_face_max > 0.01 || faces.delta_face_avg > 0.004;
+        assert_eq!(
+            hint,
+            short && pattern != QuadPattern::Flattest,
+            "{:?}",
+            out.report.notes
+        );
         // Walls across S: the capped honeycomb's axes lean from S's normals as the plain one's.
         assert!(
             m.axis_normal_deg.mean < m.parallel_baseline_deg.mean,
