@@ -75,9 +75,9 @@ const SIDES: [usize; 4] = [0, 1, 2, 3];
 /// Closeness to S, soft: the freedom to planarize lies mostly across S (each vertex slides
 /// along its node axis), and this is what it costs. Each vertex firms up once it strays past
 /// `FIRM_PAST` (see `BoundedCloseness`), so that the budget goes where the quads need it. Tried
-/// from loose to firm until no vertex is farther than `MAX_DISTANCE_FROM_S` from S and no wall
-/// crosses itself or runs backwards (the last is kept if none does, else the honeycomb stays
-/// as it was).
+/// from loose to firm, within one budget of iterations for all, until no vertex is farther
+/// than `MAX_DISTANCE_FROM_S` from S and no wall crosses itself or runs backwards; if none
+/// is, the honeycomb stays as it was.
 const CLOSENESS_WEIGHTS: [f64; 4] = [0.03, 0.3, 1.0, 3.0];
 /// Where a vertex starts to firm up, in mean edge lengths: short of `MAX_DISTANCE_FROM_S`,
 /// since one past it takes a few steps to come back.
@@ -147,7 +147,7 @@ pub(crate) fn cap(
             [m.delta_face_max, m.delta_face_avg]
         };
         let mut before = planarity(&x);
-        while state.iterations() < solver.max_iterations {
+        while iterations + state.iterations() < solver.max_iterations {
             let Some(info) = projection.iterate(&mut x, &mut state, solver)? else {
                 break;
             };
@@ -181,11 +181,13 @@ pub(crate) fn cap(
                 || !is_convex(wall(&normalized.vertices, conn.edges[e]));
             convex && along(&vertices, e) * along(&normalized.vertices, e) > 0.0
         });
-        let last = tries.peek().is_none();
-        if last || (farthest <= MAX_DISTANCE_FROM_S && kept) {
+        let clean = farthest <= MAX_DISTANCE_FROM_S && kept;
+        // The tries share one budget of iterations; once it is spent no other is made.
+        let last = tries.peek().is_none() || iterations >= solver.max_iterations;
+        if last || clean {
             solve.iterations = iterations;
-            // A last try that crossed a wall leaves the honeycomb as it was.
-            let vertices = if kept { vertices } else { normalized.vertices };
+            // A last try that is not clean leaves the honeycomb as it was.
+            let vertices = if clean { vertices } else { normalized.vertices };
             return Ok(Capped {
                 vertices: vertices.into_iter().map(|p| frame.to_model(p)).collect(),
                 cover,

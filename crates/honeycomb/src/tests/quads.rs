@@ -210,6 +210,8 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
         assert!(m.closeness_max <= 0.1 + 1e-9, "{}", m.closeness_max);
         assert!(faces.delta_face_max <= capping.delta_face_max_before + 1e-9);
         assert!(faces.delta_face_avg < capping.delta_face_avg_before);
+        // All the capping's tries share the default budget of 20 iterations.
+        assert!(capping.iterations <= 20, "{capping:?}");
         if floors {
             assert!(faces.delta_face_max <= 0.01, "{faces:?}");
             assert!(faces.delta_face_avg <= 0.004, "{faces:?}");
