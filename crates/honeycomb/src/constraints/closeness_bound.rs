@@ -17,7 +17,7 @@ const MAX_FACTOR: f64 = 64.0;
 
 pub struct BoundedCloseness<S> {
     closeness: Closeness<S>,
-    /// Distance from S past which a vertex's factor doubles, in model units.
+    /// Distance from S past which a vertex's factor doubles, in the solver's units.
     pub bound: f64,
     /// Per vertex: the factor its two rows are scaled by.
     factor: Vec<f64>,

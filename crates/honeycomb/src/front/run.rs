@@ -421,9 +421,10 @@ fn worst_quad(report: &Report) -> f64 {
     (report.quads.as_ref()).map_or(f64::MAX, |c| c.faces.delta_face_max)
 }
 
-/// A zigzag or flattest cover on the grid along S's principal directions (`along`, capped) made on the
-/// boundary's grid too; the one whose worst quad is flatter is kept, a note saying which. The
-/// grid along the principal directions makes the twist least on average, not at every cell.
+/// A zigzag or flattest cover on the grid along S's principal directions (`along`, capped)
+/// made on the boundary's grid too; the one whose worst quad is flatter is kept, a note saying
+/// which. The grid along the principal directions makes the twist least on average, not at
+/// every cell.
 fn flatter_grid(
     along: Pipelined,
     surface: &Surface,

@@ -56,7 +56,7 @@ impl WallMeasure {
             WallMeasure::Closeness => "distance of its ends from S",
             WallMeasure::Axis => "larger angle of its node axes to S's normal",
             WallMeasure::Area => "larger |spherical area| of its two cells",
-            WallMeasure::Length => "its edge on S over the mean edge length",
+            WallMeasure::Length => "its edge over the mean edge length",
         }
     }
 
