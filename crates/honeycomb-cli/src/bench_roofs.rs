@@ -368,9 +368,11 @@ fn variant_figures(made: &Outcome) -> VariantFigures {
     if let Some(q) = &made.report.quads {
         v.delta_face_max = Some(q.faces.delta_face_max);
         v.delta_face_avg = Some(q.faces.delta_face_avg);
-        v.delta_face_max_before = q.capping.as_ref().map(|c| c.delta_face_max_before);
-        v.delta_face_avg_before = q.capping.as_ref().map(|c| c.delta_face_avg_before);
-        v.capping_iterations = q.capping.as_ref().map(|c| c.iterations);
+        if let Some(c) = &q.capping {
+            v.delta_face_max_before = Some(c.delta_face_max_before);
+            v.delta_face_avg_before = Some(c.delta_face_avg_before);
+            v.capping_iterations = Some(c.iterations);
+        }
     }
     v
 }

@@ -124,7 +124,7 @@ pub fn run(args: Args) -> Result<()> {
             meaning: measure.meaning(),
             unit: measure.unit(),
             items: "walls",
-            per_wall: &per_wall,
+            values: &per_wall,
             tolerance: measure.tolerance(),
         };
         let camera = args.view.camera(&h.base.vertices);

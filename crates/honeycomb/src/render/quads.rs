@@ -7,18 +7,15 @@ use super::walls::{polygons_scene, Coloring};
 use super::Scene;
 use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
-use crate::structure::{quad_planarity, FLAT_QUAD};
+use crate::structure::{four_sided, quad_planarities, FLAT_QUAD};
 
 /// The four-sided faces of `cover` (a quad cover: its split quads, and its unsplit cells, which
 /// are not drawn), coloured by planarity, titled `title`; and the verdict line.
 pub fn quads_scene(cover: &PolyMesh, title: String, camera: Camera, width: u32) -> (Scene, String) {
-    let quads: Vec<Vec<Vec3>> = (cover.faces.iter())
-        .filter(|f| f.len() == 4)
-        .map(|f| f.iter().map(|&v| cover.vertices[v]).collect())
-        .collect();
-    let planarity: Vec<f64> = quads
-        .iter()
-        .map(|q| quad_planarity([q[0], q[1], q[2], q[3]]))
+    let quads = four_sided(&cover.faces);
+    let planarity = quad_planarities(&cover.vertices, &quads);
+    let corners: Vec<Vec<Vec3>> = (quads.iter())
+        .map(|q| q.iter().map(|&v| cover.vertices[v]).collect())
         .collect();
     let coloring = Coloring {
         title,
@@ -26,11 +23,11 @@ pub fn quads_scene(cover: &PolyMesh, title: String, camera: Camera, width: u32) 
         meaning: "quad planarity: diagonals' distance / mean side",
         unit: "",
         items: "quads",
-        per_wall: &planarity,
+        values: &planarity,
         tolerance: Some(FLAT_QUAD),
     };
     (
-        polygons_scene(&quads, "quad", &coloring, camera, width),
+        polygons_scene(&corners, "quad", &coloring, camera, width),
         coloring.verdict(),
     )
 }

@@ -20,7 +20,8 @@ pub struct Coloring<'a> {
     pub unit: &'a str,
     /// What is drawn, in the plural ("walls", "quads"), for the verdict.
     pub items: &'a str,
-    pub per_wall: &'a [f64],
+    /// One value per wall (or quad), in drawing order.
+    pub values: &'a [f64],
     /// Values above it are flagged red; the calm ramp spans 0 to it.
     pub tolerance: Option<f64>,
 }
@@ -29,13 +30,13 @@ impl Coloring<'_> {
     /// "all 2334 walls within 0.001" or "17 of 2334 walls over 0.1 deg (worst 3.2 deg)"; for a
     /// measure without a tolerance, its mean and largest value.
     pub fn verdict(&self) -> String {
-        let (n, items) = (self.per_wall.len(), self.items);
+        let (n, items) = (self.values.len(), self.items);
         let unit = if self.unit.is_empty() {
             String::new()
         } else {
             format!(" {}", self.unit)
         };
-        let worst = self.per_wall.iter().copied().fold(0.0, f64::max);
+        let worst = self.values.iter().copied().fold(0.0, f64::max);
         match self.tolerance {
             Some(t) => {
                 let over = self.over(t);
@@ -50,7 +51,7 @@ impl Coloring<'_> {
                 }
             }
             None => {
-                let mean = self.per_wall.iter().sum::<f64>() / n.max(1) as f64;
+                let mean = self.values.iter().sum::<f64>() / n.max(1) as f64;
                 format!(
                     "{n} {items}: mean {}{unit}, largest {}{unit}",
                     rounded(mean, 3),
@@ -62,7 +63,7 @@ impl Coloring<'_> {
 
     /// How many walls are over `tolerance` (a NaN is).
     fn over(&self, tolerance: f64) -> usize {
-        self.per_wall
+        self.values
             .iter()
             .filter(|&&v| v > tolerance || v.is_nan())
             .count()
@@ -74,7 +75,7 @@ impl Coloring<'_> {
             Some(t) => Ramp::Tolerance(t),
             None => {
                 let largest = self
-                    .per_wall
+                    .values
                     .iter()
                     .copied()
                     .filter(|v| v.is_finite())
@@ -153,7 +154,7 @@ pub fn polygons_scene(
     for i in order {
         scene.shapes.push(Shape::Polygon {
             points: projected[i].iter().map(|&p| to_screen(p)).collect(),
-            fill: Some(ramp.colour(coloring.per_wall[i])),
+            fill: Some(ramp.colour(coloring.values[i])),
             stroke: Some(((40, 40, 40), stroke)),
             class: Some(class),
             opacity: 1.0,

@@ -13,8 +13,8 @@ pub(crate) use measures::{is_convex, line_angle_deg, per_wall_worse_end, thickes
 pub use measures::{measure, quad_planarity, Measures, Spread};
 pub(crate) use quad_cover::QuadCover;
 pub use quad_cover::QuadPattern;
-pub(crate) use quad_measures::face_measures;
 pub(crate) use quad_measures::quad_mesh_measures;
+pub(crate) use quad_measures::{face_measures, four_sided, quad_planarities};
 pub use quad_measures::{FaceMeasures, FLAT_QUAD, FLAT_QUAD_MEAN};
 #[cfg(test)]
 pub(crate) use variant_measures::angle_deg;

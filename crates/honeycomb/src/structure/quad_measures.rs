@@ -20,12 +20,25 @@ pub struct FaceMeasures {
     pub quads: usize,
 }
 
-/// Planarity of the given quads (e.g. `QuadCover::quads`) on `vertices`.
-pub fn face_measures(vertices: &[Vec3], quads: &[[usize; 4]]) -> FaceMeasures {
-    let deltas: Vec<f64> = quads
+/// Each quad's planarity on `vertices`.
+pub fn quad_planarities(vertices: &[Vec3], quads: &[[usize; 4]]) -> Vec<f64> {
+    quads
         .iter()
         .map(|q| quad_planarity(q.map(|v| vertices[v])))
-        .collect();
+        .collect()
+}
+
+/// The four-sided ones of `faces`, as corner indices.
+pub fn four_sided(faces: &[Vec<usize>]) -> Vec<[usize; 4]> {
+    faces
+        .iter()
+        .filter_map(|f| <[usize; 4]>::try_from(f.as_slice()).ok())
+        .collect()
+}
+
+/// Planarity of the given quads (e.g. `QuadCover::quads`) on `vertices`.
+pub fn face_measures(vertices: &[Vec3], quads: &[[usize; 4]]) -> FaceMeasures {
+    let deltas = quad_planarities(vertices, quads);
     FaceMeasures {
         delta_face_max: deltas.iter().copied().fold(0.0, f64::max),
         delta_face_avg: deltas.iter().sum::<f64>() / deltas.len().max(1) as f64,
@@ -36,13 +49,10 @@ pub fn face_measures(vertices: &[Vec3], quads: &[[usize; 4]]) -> FaceMeasures {
 /// Planarity of the first `split` faces of a quad-cover mesh (`QuadCover::mesh` lists the split
 /// quads first; the unsplit cells after them are not required to be planar).
 pub fn quad_mesh_measures(mesh: &PolyMesh, split: usize) -> FaceMeasures {
-    let quads: Vec<[usize; 4]> = mesh
-        .faces
-        .iter()
-        .take(split)
-        .filter_map(|f| <[usize; 4]>::try_from(f.as_slice()).ok())
-        .collect();
-    face_measures(&mesh.vertices, &quads)
+    face_measures(
+        &mesh.vertices,
+        &four_sided(&mesh.faces[..split.min(mesh.faces.len())]),
+    )
 }
 
 #[cfg(test)]
