@@ -45,8 +45,11 @@ impl std::str::FromStr for Flattener {
     }
 }
 
-/// The share of S's area that may face away from the view of a projection.
-const MAX_AWAY_AREA: f64 = 1e-3;
+/// The share of S's area a flattening may turn over: a few slivers facing away from a
+/// projection's view (noise in the data), or turned over by the ARAP refinement where S
+/// crumples at a point more than lengths can follow. The grid folds over less than a cell
+/// there, and the cells over them are caught as folds later.
+const MAX_FOLDED_AREA: f64 = 1e-3;
 
 /// Local/global steps of the ARAP refinement.
 const ARAP_ITERATIONS: usize = 30;
@@ -135,18 +138,14 @@ pub fn flatten_viewed(
     if flattener == Flattener::Project {
         // A few slivers facing away (noise in the data) are let through: the cells over them
         // are caught as folds later. More than that is a surface that overhangs.
-        let away: Vec<&[usize; 3]> = triangles
-            .iter()
-            .filter(|t| signed_area(&points, t) <= 0.0)
-            .collect();
-        let away_area: f64 = away.iter().map(|t| triangle_area(vertices, t)).sum();
-        if away_area > MAX_AWAY_AREA * area3 {
+        let away_area = turned_over_area(vertices, triangles, &points);
+        if away_area > MAX_FOLDED_AREA * area3 {
             if let Some(d) = view {
                 return Err(Error::Mesh(format!(
                     "{} triangles ({:.1}% of the area) face away from the direction {}: seen \
                      along it the surface folds over itself, so walls along it would lie in \
                      the surface",
-                    away.len(),
+                    flipped(&points, triangles),
                     100.0 * away_area / area3,
                     crate::error::short_vector(d)
                 )));
@@ -155,7 +154,7 @@ pub fn flatten_viewed(
                 "{} triangles ({:.1}% of the area) face away from every view direction: seen \
                  from anywhere the surface folds over itself, so it cannot be projected \
                  (--flatten arap can)",
-                away.len(),
+                flipped(&points, triangles),
                 100.0 * away_area / area3
             )));
         }
@@ -164,10 +163,13 @@ pub fn flatten_viewed(
     if flattener == Flattener::Arap {
         used = Flattener::Lscm;
         // Kept as LSCM left it when the Laplacian cannot be factorized or the refinement
-        // turns triangles over (strongly curved pieces: the rotations cannot agree).
+        // turns over more than slivers (strongly curved pieces: the rotations cannot agree).
+        // A sliver is no reason to keep LSCM, whose cells grow and shrink with the conformal
+        // factor over the whole of S.
         let mut refined = points.clone();
         if super::arap::refine(vertices, triangles, &mut refined, ARAP_ITERATIONS)
-            && flipped(&refined, triangles) <= flipped(&points, triangles)
+            && turned_over_area(vertices, triangles, &refined)
+                <= turned_over_area(vertices, triangles, &points) + MAX_FOLDED_AREA * area3
         {
             points = refined;
             used = Flattener::Arap;
@@ -372,6 +374,15 @@ fn flipped(points: &[Point2], triangles: &[[usize; 3]]) -> usize {
         .count()
 }
 
+/// S's area over the triangles that `points` turn over.
+fn turned_over_area(vertices: &[Vec3], triangles: &[[usize; 3]], points: &[Point2]) -> f64 {
+    triangles
+        .iter()
+        .filter(|t| signed_area(points, t) <= 0.0)
+        .map(|t| triangle_area(vertices, t))
+        .sum()
+}
+
 pub fn signed_area(points: &[Point2], t: &[usize; 3]) -> f64 {
     let [a, b, c] = t.map(|v| points[v]);
     0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]))
@@ -496,6 +507,33 @@ mod tests {
         assert!(f.distortion.conformal_avg < 1.02, "{:?}", f.distortion);
         assert!(f.distortion.area_scale_max > f.distortion.area_scale_min);
         assert!(triangles.iter().all(|t| signed_area(&f.points, t) > 0.0));
+    }
+
+    /// A flat plate crumpled at one point (a small monkey saddle: more than 360 degrees of
+    /// angle there). No map keeps the lengths around it, so the ARAP refinement turns a few
+    /// slivers over; LSCM keeps angles by shrinking the cells all over the plate instead.
+    #[test]
+    fn a_plate_crumpled_at_a_point_keeps_its_lengths() {
+        let (vertices, triangles) = lifted_grid(100, |x, y| {
+            let (u, v, s) = (x - 0.5, y - 0.5, 0.025f64);
+            0.075 * (u.powi(3) - 3.0 * u * v * v) / s.powi(3) * (-(u * u + v * v) / (s * s)).exp()
+        });
+        let lscm = flatten(&vertices, &triangles, Flattener::Lscm).unwrap();
+        let arap = flatten(&vertices, &triangles, Flattener::Arap).unwrap();
+        assert_eq!(arap.flattener, Flattener::Arap);
+        assert!(arap.flipped > 0, "the refinement turned nothing over");
+        let area = arap.area;
+        let over = turned_over_area(&vertices, &triangles, &arap.points);
+        assert!(
+            over <= MAX_FOLDED_AREA * area,
+            "{over} of {area} turned over"
+        );
+        assert!(
+            arap.distortion.length_scale_cv < 0.3 * lscm.distortion.length_scale_cv,
+            "ARAP {:?}, LSCM {:?}",
+            arap.distortion,
+            lscm.distortion
+        );
     }
 
     #[test]
