@@ -1,6 +1,6 @@
 //! `honeycomb init SURFACE ... -o BASE.obj` and `honeycomb pipeline SURFACE ... -o DIR`.
 
-use crate::optimize::{finish, load, print_notes, SolveArgs};
+use crate::optimize::{finish, load_surface, print_notes, SolveArgs};
 use crate::progress::{IterationBar, Output, Spinner};
 use honeycomb::export::stage_json;
 use honeycomb::init::{
@@ -107,7 +107,7 @@ pub struct Args {
 pub fn run(args: Args) -> Result<()> {
     let output = Output::from_flags(args.quiet, args.json);
     let options = args.init.options()?;
-    let surface = load(&args.surface, output)?;
+    let surface = load_surface(&args.surface, output)?;
     let made = make(&surface, &options, output).map_err(|e| e.about_file(&args.surface))?;
     // Both or neither: a mesh without the report asked for looks like a finished run.
     let mut outputs = Outputs::new();
@@ -185,7 +185,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
         options: args.opts.options()?,
     };
     let output = args.opts.output();
-    let surface = load(&args.surface, output)?;
+    let surface = load_surface(&args.surface, output)?;
     // The pipeline checks it too; here it is refused before -o's parents are made.
     check_solve_cells(&options.init, &surface).map_err(|e| e.about_file(&args.surface))?;
     let surface = Surface::new(surface).map_err(|e| e.about_file(&args.surface))?;

@@ -4,7 +4,10 @@ use crate::progress::{IterationBar, Output};
 use honeycomb::analysis::read_directions;
 use honeycomb::error::rounded;
 use honeycomb::geometry::{parse_direction, read_axes};
-use honeycomb::mesh::{check_base_near_surface, nonconvex_faces, read_mesh, OutputDir, PolyMesh};
+use honeycomb::mesh::{
+    check_base_near_surface, nonconvex_faces, read_mesh, read_surface, LoadedMesh, OutputDir,
+    PolyMesh,
+};
 use honeycomb::report::Report;
 use honeycomb::structure::QuadPattern;
 use honeycomb::{
@@ -332,7 +335,16 @@ pub fn one_variant<'a>(flags: &[(bool, &'a str)]) -> Result<Option<&'a str>> {
 
 /// Reads a mesh, passing the reader's warnings to stderr.
 pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
-    let loaded = read_mesh(path)?;
+    warned(read_mesh(path)?, output)
+}
+
+/// Reads a design surface (vertices at one position joined), passing the reader's warnings
+/// to stderr.
+pub fn load_surface(path: &Path, output: Output) -> Result<PolyMesh> {
+    warned(read_surface(path)?, output)
+}
+
+fn warned(loaded: LoadedMesh, output: Output) -> Result<PolyMesh> {
     if output != Output::Json || !loaded.warnings.is_empty() {
         for w in &loaded.warnings {
             eprintln!("warning: {w}");
@@ -509,7 +521,8 @@ pub fn run(args: Args) -> Result<()> {
         BaseMesh::from_mesh(load(&args.base, output)?).map_err(|e| e.about_file(&args.base))?;
     let surface = match &args.opts.surface {
         Some(path) => {
-            let surface = Surface::new(load(path, output)?).map_err(|e| e.about_file(path))?;
+            let surface =
+                Surface::new(load_surface(path, output)?).map_err(|e| e.about_file(path))?;
             // A bounding-box check (optimize makes it too): here the message can name the file.
             check_base_near_surface(base.mesh(), surface.source_mesh())
                 .map_err(|e| e.about_file(path))?;

@@ -114,6 +114,52 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     assert_eq!(initial.faces, base.faces);
 }
 
+/// A surface exported with corners of its own per face (an unwelded mesh, as from STL) is read
+/// as the welded one, with a warning; before, it came apart into one piece per face.
+#[test]
+fn pipeline_joins_an_unwelded_surface() {
+    let tmp = TempDir::new("unwelded");
+    let welded = read_written_mesh(&surface_file(&tmp, "wave"));
+    let mut text = String::new();
+    for f in &welded.faces {
+        for &v in f {
+            let p = welded.vertices[v];
+            text += &format!("v {} {} {}\n", p.x, p.y, p.z);
+        }
+    }
+    let mut next = 1;
+    for f in &welded.faces {
+        let corners: Vec<String> = (next..next + f.len()).map(|k| k.to_string()).collect();
+        text += &format!("f {}\n", corners.join(" "));
+        next += f.len();
+    }
+    let surface = tmp.join("unwelded.obj");
+    std::fs::write(&surface, text).unwrap();
+    let dir = tmp.join("out");
+    let out = run([
+        "pipeline",
+        surface.to_str().unwrap(),
+        "--cells",
+        "300",
+        "-q",
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let repeated = next - 1 - welded.vertices.len();
+    assert!(
+        stderr(&out).contains(&format!(
+            "{repeated} vertices repeat the position of another"
+        )),
+        "{}",
+        stderr(&out)
+    );
+    let report = read_json(&dir, "report.json");
+    assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
+    let s = read_written_mesh(&dir.join("surface.obj"));
+    assert_eq!(s.vertices.len(), welded.vertices.len());
+}
+
 /// The same surface gives the same honeycomb, to the last digit, on one core as on two: the
 /// factorization's roundoff must not depend on the machine (on a surface where the sheet's
 /// folds are chaotic it decides between results). Skipped where `taskset` cannot confine the

@@ -454,12 +454,19 @@ const COUNT_TOLERANCE: f64 = 0.15;
 /// that folded over: ARAP is given up for LSCM.
 const MIN_COVERED_SHARE: f64 = 0.5;
 
-/// A hexagonal base mesh on `surface` (a triangle, quad or polygon mesh). With a number of
+/// A hexagonal base mesh on `surface` (a triangle, quad or polygon mesh; vertices at one
+/// position are joined, as [`crate::Surface::new`] joins them). With a number of
 /// cells, the lattice is rescaled until the count is within a few percent of it (or as
 /// close as three tries come).
 pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     let start = Instant::now();
     options.validate()?;
+    let mut joined = surface.clone();
+    let surface = if joined.join_coincident_vertices() > 0 {
+        &joined
+    } else {
+        surface
+    };
     let conn = validate_surface_mesh(surface)?;
     let components = conn.pieces(&vec![false; surface.faces.len()]).len();
     if components > 1 {

@@ -1,5 +1,6 @@
 //! Polygon meshes: storage, adjacency, validation and file formats.
 
+mod coincident;
 mod connectivity;
 mod convexity;
 pub mod io;
@@ -9,8 +10,8 @@ mod validate;
 pub use connectivity::Connectivity;
 pub use convexity::nonconvex_faces;
 pub use io::{
-    read_mesh, replace_folder, write_atomically, write_mesh, write_output_dir, LoadedMesh,
-    OutputDir, Outputs, Previous, Verdict,
+    read_mesh, read_surface, replace_folder, write_atomically, write_mesh, write_output_dir,
+    LoadedMesh, OutputDir, Outputs, Previous, Verdict,
 };
 pub use polymesh::PolyMesh;
 pub use validate::{check_base_near_surface, validate_base_mesh, validate_surface_mesh};

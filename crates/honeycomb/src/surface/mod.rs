@@ -128,16 +128,17 @@ impl Surface {
     }
 
     /// Reads a design surface (OBJ, OFF or PLY: triangles, quads or polygons), checked for what
-    /// S must be (finite, manifold, orientable, no zero-area faces); errors name the file.
-    /// Warnings of the reader (skipped lines, ...) are left out: read with
-    /// [`crate::mesh::read_mesh`] to see them.
+    /// S must be (finite, manifold, orientable, no zero-area faces), vertices at one position
+    /// joined; errors name the file. Warnings of the reader (skipped lines, joined vertices,
+    /// ...) are left out: read with [`crate::mesh::read_surface`] to see them.
     pub fn read(path: impl AsRef<std::path::Path>) -> Result<Surface> {
         let path = path.as_ref();
-        let mesh = crate::mesh::read_mesh(path)?.mesh;
+        let mesh = crate::mesh::read_surface(path)?.mesh;
         Surface::new(mesh).map_err(|e| e.about_file(path))
     }
 
-    /// A design surface from a polygon mesh, checked as [`Surface::read`] does.
+    /// A design surface from a polygon mesh, its vertices at one position joined and checked
+    /// as [`Surface::read`] does.
     ///
     /// ```
     /// use honeycomb::mesh::PolyMesh;
@@ -152,7 +153,8 @@ impl Surface {
     /// assert!(Surface::new(PolyMesh::new(vec![Vec3::ZERO; 3], vec![vec![0, 1, 5]])).is_err());
     /// # Ok::<(), honeycomb::Error>(())
     /// ```
-    pub fn new(mesh: PolyMesh) -> Result<Surface> {
+    pub fn new(mut mesh: PolyMesh) -> Result<Surface> {
+        mesh.join_coincident_vertices();
         crate::mesh::validate_surface_mesh(&mesh)?;
         Surface::from_mesh(&mesh)
     }

@@ -272,6 +272,39 @@ fn unusable_surfaces_and_sizes_are_named() {
 }
 
 /// A grid of unit squares over [0, n]^2 without the squares `hole` (column, row) lists.
+/// An export that gives each face corners of its own (as STL does) is the same surface: init
+/// and S see the welded mesh, with the same cells.
+#[test]
+fn an_unwelded_surface_is_read_as_the_welded_one() {
+    let s = surface(Shape::Wave);
+    let mut unwelded = PolyMesh::default();
+    for f in &s.faces {
+        let first = unwelded.vertices.len();
+        unwelded.vertices.extend(f.iter().map(|&v| s.vertices[v]));
+        unwelded.faces.push((first..first + f.len()).collect());
+    }
+    let welded = init(&s, &options(300)).unwrap().report;
+    let joined = init(&unwelded, &options(300)).unwrap().report;
+    // The joined vertices come in another order, which may shift the grid a little.
+    let (a, b) = (joined.cells as f64, welded.cells as f64);
+    assert!((a - b).abs() <= 0.02 * b, "{a} cells joined, {b} welded");
+    assert!(joined.edge_length_cv <= welded.edge_length_cv + 0.01);
+    let surface = Surface::new(unwelded).unwrap();
+    assert_eq!(surface.source_mesh().vertices.len(), s.vertices.len());
+    // Unwelded, every edge would be S's border, an inner vertex on it.
+    let middle = s.centroid();
+    let inner = s
+        .vertices
+        .iter()
+        .min_by(|a, b| (**a - middle).norm().total_cmp(&(**b - middle).norm()))
+        .unwrap();
+    assert!(
+        !surface
+            .closest_point(*inner + Vec3::new(0.0, 0.0, 0.1))
+            .on_boundary
+    );
+}
+
 fn square_with_holes(n: usize, hole: &[(usize, usize)]) -> PolyMesh {
     let id = |i: usize, j: usize| j * (n + 1) + i;
     let vertices = (0..=n)

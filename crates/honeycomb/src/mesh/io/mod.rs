@@ -71,6 +71,21 @@ pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
     }
 }
 
+/// Reads a design surface as [`read_mesh`] does, with vertices the file repeats at one position
+/// joined ([`PolyMesh::join_coincident_vertices`]) and a warning saying how many.
+pub fn read_surface(path: &Path) -> Result<LoadedMesh> {
+    let mut loaded = read_mesh(path)?;
+    let joined = loaded.mesh.join_coincident_vertices();
+    if joined > 0 {
+        loaded.warnings.push(format!(
+            "{}: {joined} vertices repeat the position of another and were joined to it (the \
+             file gives faces corners of their own); vertex numbers count the joined mesh",
+            path.display()
+        ));
+    }
+    Ok(loaded)
+}
+
 /// Writes `mesh` as OBJ, OFF or ASCII PLY, chosen by the extension of `path`.
 pub fn write_mesh(path: &Path, mesh: &PolyMesh) -> Result<()> {
     let mut outputs = Outputs::new();
