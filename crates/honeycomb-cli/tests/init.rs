@@ -114,10 +114,11 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     assert_eq!(initial.faces, base.faces);
 }
 
-/// A surface exported with corners of its own per face (an unwelded mesh, as from STL) is read
-/// as the welded one, with a warning; before, it came apart into one piece per face.
+/// A surface exported with corners of its own per face (an unwelded mesh, as from STL) and some
+/// faces wound the other way is read as the welded, oriented one, with a warning for each
+/// repair; before, it came apart into one piece per face.
 #[test]
-fn pipeline_joins_an_unwelded_surface() {
+fn pipeline_repairs_an_unwelded_surface_wound_both_ways() {
     let tmp = TempDir::new("unwelded");
     let welded = read_written_mesh(&surface_file(&tmp, "wave"));
     let mut text = String::new();
@@ -128,11 +129,16 @@ fn pipeline_joins_an_unwelded_surface() {
         }
     }
     let mut next = 1;
-    for f in &welded.faces {
-        let corners: Vec<String> = (next..next + f.len()).map(|k| k.to_string()).collect();
+    for (i, f) in welded.faces.iter().enumerate() {
+        let mut corners: Vec<String> = (next..next + f.len()).map(|k| k.to_string()).collect();
+        // Every third face wound the other way: the minority, turned back.
+        if i % 3 == 1 {
+            corners.reverse();
+        }
         text += &format!("f {}\n", corners.join(" "));
         next += f.len();
     }
+    let turned = (welded.faces.len() + 1) / 3;
     let surface = tmp.join("unwelded.obj");
     std::fs::write(&surface, text).unwrap();
     let dir = tmp.join("out");
@@ -147,13 +153,12 @@ fn pipeline_joins_an_unwelded_surface() {
     ]);
     assert!(out.status.success(), "{}", stderr(&out));
     let repeated = next - 1 - welded.vertices.len();
-    assert!(
-        stderr(&out).contains(&format!(
-            "{repeated} vertices repeat the position of another"
-        )),
-        "{}",
-        stderr(&out)
-    );
+    for warning in [
+        format!("{repeated} vertices repeat the position of another"),
+        format!("{turned} faces were wound against their neighbours"),
+    ] {
+        assert!(stderr(&out).contains(&warning), "{}", stderr(&out));
+    }
     let report = read_json(&dir, "report.json");
     assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
     let s = read_written_mesh(&dir.join("surface.obj"));

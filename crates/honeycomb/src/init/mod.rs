@@ -26,7 +26,9 @@ pub use strokes::{read_strokes, sixfold_mean};
 
 use crate::error::{about, rounded, rounded_down, Error, Result};
 use crate::geometry::Vec3;
-use crate::mesh::{validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh};
+use crate::mesh::{
+    repair_surface_mesh, validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh,
+};
 use crate::surface::Surface;
 use locate::Locator;
 use serde::Serialize;
@@ -454,18 +456,18 @@ const COUNT_TOLERANCE: f64 = 0.15;
 /// that folded over: ARAP is given up for LSCM.
 const MIN_COVERED_SHARE: f64 = 0.5;
 
-/// A hexagonal base mesh on `surface` (a triangle, quad or polygon mesh; vertices at one
-/// position are joined, as [`crate::Surface::new`] joins them). With a number of
+/// A hexagonal base mesh on `surface` (a triangle, quad or polygon mesh, repaired as
+/// [`crate::Surface::new`] repairs it). With a number of
 /// cells, the lattice is rescaled until the count is within a few percent of it (or as
 /// close as three tries come).
 pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     let start = Instant::now();
     options.validate()?;
-    let mut joined = surface.clone();
-    let surface = if joined.join_coincident_vertices() > 0 {
-        &joined
-    } else {
+    let mut repaired = surface.clone();
+    let surface = if repair_surface_mesh(&mut repaired).is_empty() {
         surface
+    } else {
+        &repaired
     };
     let conn = validate_surface_mesh(surface)?;
     let components = conn.pieces(&vec![false; surface.faces.len()]).len();

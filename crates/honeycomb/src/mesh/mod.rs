@@ -4,6 +4,7 @@ mod coincident;
 mod connectivity;
 mod convexity;
 pub mod io;
+mod orientation;
 mod polymesh;
 mod validate;
 
@@ -13,5 +14,8 @@ pub use io::{
     read_mesh, read_surface, replace_folder, write_atomically, write_mesh, write_output_dir,
     LoadedMesh, OutputDir, Outputs, Previous, Verdict,
 };
+pub(crate) use orientation::orientation_flips;
 pub use polymesh::PolyMesh;
-pub use validate::{check_base_near_surface, validate_base_mesh, validate_surface_mesh};
+pub use validate::{
+    check_base_near_surface, repair_surface_mesh, validate_base_mesh, validate_surface_mesh,
+};

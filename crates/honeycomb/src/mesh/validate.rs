@@ -19,6 +19,28 @@ pub const MIN_EXTENT: f64 = 1e-6;
 /// (its corners lie on one line): its normal and any map of it are undefined.
 const FLAT_FACE: f64 = 1e-12;
 
+/// Repairs what a design surface's file often gets wrong where the repair is plain: vertices
+/// it repeats at one position are joined, faces wound against their neighbours turned back.
+/// Returns what was repaired, a sentence each.
+pub fn repair_surface_mesh(mesh: &mut PolyMesh) -> Vec<String> {
+    let mut repaired = Vec::new();
+    let joined = mesh.join_coincident_vertices();
+    if joined > 0 {
+        repaired.push(format!(
+            "{joined} vertices repeat the position of another and were joined to it (the file \
+             gives faces corners of their own); vertex numbers count the joined mesh"
+        ));
+    }
+    let turned = mesh.orient_faces_consistently();
+    if turned > 0 {
+        repaired.push(format!(
+            "{turned} faces were wound against their neighbours and were turned to agree with \
+             them"
+        ));
+    }
+    repaired
+}
+
 /// Accepts a design surface: any non-empty manifold polygon mesh with finite coordinates within
 /// `MAX_COORDINATE`, no isolated vertices, no zero-length edges and no face without area.
 pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {

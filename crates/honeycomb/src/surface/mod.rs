@@ -128,17 +128,17 @@ impl Surface {
     }
 
     /// Reads a design surface (OBJ, OFF or PLY: triangles, quads or polygons), checked for what
-    /// S must be (finite, manifold, orientable, no zero-area faces), vertices at one position
-    /// joined; errors name the file. Warnings of the reader (skipped lines, joined vertices,
-    /// ...) are left out: read with [`crate::mesh::read_surface`] to see them.
+    /// S must be (finite, manifold, orientable, no zero-area faces), once repaired
+    /// ([`crate::mesh::repair_surface_mesh`]); errors name the file. Warnings of the reader
+    /// (skipped lines, repairs, ...) are left out: read with [`crate::mesh::read_surface`] to
+    /// see them.
     pub fn read(path: impl AsRef<std::path::Path>) -> Result<Surface> {
         let path = path.as_ref();
         let mesh = crate::mesh::read_surface(path)?.mesh;
         Surface::new(mesh).map_err(|e| e.about_file(path))
     }
 
-    /// A design surface from a polygon mesh, its vertices at one position joined and checked
-    /// as [`Surface::read`] does.
+    /// A design surface from a polygon mesh, repaired and checked as [`Surface::read`] does.
     ///
     /// ```
     /// use honeycomb::mesh::PolyMesh;
@@ -154,7 +154,7 @@ impl Surface {
     /// # Ok::<(), honeycomb::Error>(())
     /// ```
     pub fn new(mut mesh: PolyMesh) -> Result<Surface> {
-        mesh.join_coincident_vertices();
+        crate::mesh::repair_surface_mesh(&mut mesh);
         crate::mesh::validate_surface_mesh(&mesh)?;
         Surface::from_mesh(&mesh)
     }

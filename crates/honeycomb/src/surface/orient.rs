@@ -1,6 +1,7 @@
 //! Consistent orientation of a triangle mesh, and its boundary half-edges.
 
 use crate::error::{Error, Result};
+use crate::mesh::orientation_flips;
 
 /// An empty slot in a triangle's neighbour list.
 const NONE: u32 = u32::MAX;
@@ -65,7 +66,19 @@ pub(crate) fn orient(tris: &mut [[usize; 3]]) -> Result<Vec<[usize; 2]>> {
         }
     }
 
-    let flipped = orientation_flips(&neighbours, tris)?;
+    let flipped = orientation_flips(tris.len(), |t| {
+        neighbours[t]
+            .into_iter()
+            .filter(|s| s.0 != NONE)
+            .map(|(u, same)| (u as usize, same))
+    })
+    .map_err(|t| {
+        let [a, b, c] = tris[t];
+        Error::Mesh(format!(
+            "the surface is not orientable (like a Moebius strip): triangle {a}-{b}-{c} cannot \
+             be oriented consistently with its neighbours"
+        ))
+    })?;
     for (tri, &f) in tris.iter_mut().zip(&flipped) {
         if f {
             tri.swap(1, 2);
@@ -90,53 +103,6 @@ fn add_neighbour(slots: &mut [(u32, bool); 3], t: u32, same: bool) {
         .find(|s| s.0 == NONE)
         .expect("a triangle has three edges, each shared with at most one other triangle");
     *slot = (t, same);
-}
-
-/// Which triangles to flip. Neighbours traversing their shared edge the same way must end up
-/// with different flip states, the others with equal ones.
-fn orientation_flips(neighbours: &[[(u32, bool); 3]], tris: &[[usize; 3]]) -> Result<Vec<bool>> {
-    let n = neighbours.len();
-    let mut flip: Vec<Option<bool>> = vec![None; n];
-    let mut component = Vec::new();
-    for root in 0..n {
-        if flip[root].is_some() {
-            continue;
-        }
-        flip[root] = Some(false);
-        component.clear();
-        component.push(root);
-        let mut next = 0;
-        while next < component.len() {
-            let t = component[next];
-            next += 1;
-            let ft = flip[t].expect("queued triangles have a state");
-            for &(nb, same) in neighbours[t].iter().filter(|s| s.0 != NONE) {
-                let nb = nb as usize;
-                let want = ft != same;
-                match flip[nb] {
-                    None => {
-                        flip[nb] = Some(want);
-                        component.push(nb);
-                    }
-                    Some(f) if f != want => {
-                        let [a, b, c] = tris[nb];
-                        return Err(Error::Mesh(format!(
-                            "the surface is not orientable (like a Moebius strip): triangle \
-                             {a}-{b}-{c} cannot be oriented consistently with its neighbours"
-                        )));
-                    }
-                    Some(_) => {}
-                }
-            }
-        }
-        let flipped = component.iter().filter(|&&t| flip[t] == Some(true)).count();
-        if 2 * flipped > component.len() {
-            for &t in &component {
-                flip[t] = flip[t].map(|f| !f);
-            }
-        }
-    }
-    Ok(flip.into_iter().map(|f| f == Some(true)).collect())
 }
 
 #[cfg(test)]

@@ -71,17 +71,14 @@ pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
     }
 }
 
-/// Reads a design surface as [`read_mesh`] does, with vertices the file repeats at one position
-/// joined ([`PolyMesh::join_coincident_vertices`]) and a warning saying how many.
+/// Reads a design surface as [`read_mesh`] does, repaired
+/// ([`crate::mesh::repair_surface_mesh`]) with a warning for each repair.
 pub fn read_surface(path: &Path) -> Result<LoadedMesh> {
     let mut loaded = read_mesh(path)?;
-    let joined = loaded.mesh.join_coincident_vertices();
-    if joined > 0 {
-        loaded.warnings.push(format!(
-            "{}: {joined} vertices repeat the position of another and were joined to it (the \
-             file gives faces corners of their own); vertex numbers count the joined mesh",
-            path.display()
-        ));
+    for repair in crate::mesh::repair_surface_mesh(&mut loaded.mesh) {
+        loaded
+            .warnings
+            .push(format!("{}: {repair}", path.display()));
     }
     Ok(loaded)
 }
