@@ -215,10 +215,59 @@ const VARIANT_SOLVE: &str = "guided projection";
 /// What the capping solve is called in [`Step::Iteration`].
 const CAPPING_SOLVE: &str = "planar quads";
 
+/// The honeycomb `optimized` (reported in `report`) capped by planar quads on `surface` (see
+/// [`cap_with_cover`]). A flattest cover whose worst quad stays above [`FLAT_QUAD`] is set
+/// against the zigzag cover of the same honeycomb, and the flatter kept: each cell's own
+/// flattest diagonal is chosen before the capping, which sees the whole cover; where S folds
+/// along straight creases (a folded plate), the zigzag's straight polylines follow them and cap
+/// flatter.
+fn cap_with_quads(
+    optimized: Optimized,
+    report: Report,
+    surface: &Surface,
+    quads: &QuadOptions,
+    options: &OptimizeOptions,
+    progress: &mut Progress,
+) -> Result<(Optimized, Report)> {
+    let spare =
+        (quads.pattern == QuadPattern::Flattest).then(|| (optimized.clone(), report.clone()));
+    let flattest = cap_with_cover(optimized, report, surface, quads, options, progress)?;
+    let Some((optimized, report)) = spare.filter(|_| worst_quad(&flattest.1) > FLAT_QUAD) else {
+        return Ok(flattest);
+    };
+    let zigzag = QuadOptions {
+        pattern: QuadPattern::Zigzag,
+        ..quads.clone()
+    };
+    let mut pattern = cap_with_cover(optimized, report, surface, &zigzag, options, progress)?;
+    let (a, b) = (worst_quad(&flattest.1), worst_quad(&pattern.1));
+    let spent = flattest.1.iterations_total + capping_iterations(&pattern.1);
+    let mut kept = if pattern.1.honeycomb && b < a {
+        pattern.1.notes.retain(|n| !n.contains("--quads flattest"));
+        pattern.1.notes.push(format!(
+            "flattest quads: the zigzag cover, whose worst quad is flatter than with each cell's \
+             own diagonal ({} against {})",
+            rounded(b, 4),
+            rounded(a, 4)
+        ));
+        pattern
+    } else {
+        let mut flattest = flattest;
+        flattest.1.notes.push(format!(
+            "flattest quads: each cell's own diagonal (its worst quad {}, with the zigzag cover {})",
+            rounded(a, 4),
+            rounded(b, 4)
+        ));
+        flattest
+    };
+    kept.1.iterations_total = spent;
+    Ok(kept)
+}
+
 /// The honeycomb `optimized` (reported in `report`) capped by planar quads on `surface`: its
 /// walls kept, its vertices moved (see `optimize::capped`), its report turned into the capped
 /// one's with the trade stated.
-fn cap_with_quads(
+fn cap_with_cover(
     optimized: Optimized,
     mut report: Report,
     surface: &Surface,
@@ -414,6 +463,13 @@ fn capped_made(
         report,
         ..made
     })
+}
+
+/// The iterations of a capped honeycomb's capping solve.
+fn capping_iterations(report: &Report) -> usize {
+    (report.quads.as_ref())
+        .and_then(|q| q.capping.as_ref())
+        .map_or(0, |c| c.iterations)
 }
 
 /// The largest planarity defect of a capped honeycomb's quads.

@@ -231,6 +231,7 @@ impl OptimizeOptions {
 }
 
 /// The result of `optimize`, in model units.
+#[derive(Clone)]
 pub struct Optimized {
     pub honeycomb: Honeycomb,
     pub connectivity: Connectivity,

@@ -299,6 +299,31 @@ fn a_zigzag_cover_keeps_the_grid_with_the_flatter_worst_quad() {
     );
 }
 
+/// A folded plate (a roof of flat strips meeting at straight creases): a cell that straddles a
+/// crease finds no flat diagonal of its own, while the zigzag's straight polylines along the
+/// creases cap flat. The flattest cover, set against the zigzag, keeps whichever caps flatter.
+#[test]
+fn a_flattest_cover_is_as_flat_as_the_zigzag_on_a_folded_plate() {
+    let (mut vertices, triangles) = crate::init::lifted_grid(80, |_, _| 0.0);
+    let crease = |x: f64| 2.5 * (((x + 20.0) / 5.0).rem_euclid(2.0) - 1.0).abs();
+    for p in &mut vertices {
+        let (x, y) = (20.0 * p.x - 10.0, 20.0 * p.y - 10.0);
+        *p = Vec3::new(x, y, crease(x));
+    }
+    let faces = triangles.iter().map(|t| t.to_vec()).collect();
+    let surface = Surface::new(crate::mesh::PolyMesh::new(vertices, faces)).unwrap();
+    let (flattest, faces, _) = piped_quads(&surface, QuadPattern::Flattest, None);
+    let (_, zigzag, _) = piped_quads(&surface, QuadPattern::Zigzag, None);
+    println!("flattest {faces:?}, zigzag {zigzag:?}");
+    assert!(faces.delta_face_max <= zigzag.delta_face_max + 1e-12);
+    assert!(faces.delta_face_max <= 0.01 && faces.delta_face_avg <= 0.004);
+    assert!(
+        (flattest.report.notes.iter()).any(|n| n.starts_with("flattest quads: the zigzag")),
+        "{:?}",
+        flattest.report.notes
+    );
+}
+
 /// `pipeline --quads PATTERN` at 750 cells, its grid along `align` if given (else the
 /// pipeline's choice): the outcome, its quads' planarity read off quads.obj's vertices, and
 /// what its grid follows.
