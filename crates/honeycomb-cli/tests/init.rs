@@ -86,16 +86,7 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     let tmp = TempDir::new("pipeline");
     let surface = surface_file(&tmp, "roof");
     let dir = tmp.join("out");
-    let out = run([
-        "pipeline",
-        surface.to_str().unwrap(),
-        "--cells",
-        "300",
-        "--json",
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
+    let out = pipeline_of_300_cells(&surface, &dir, "--json");
     for file in [
         "initial.obj",
         "init.json",
@@ -112,6 +103,21 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     let initial = read_written_mesh(&dir.join("initial.obj"));
     let base = read_written_mesh(&dir.join("base.obj"));
     assert_eq!(initial.faces, base.faces);
+}
+
+/// `honeycomb pipeline SURFACE --cells 300 FLAG -o DIR`, which must succeed.
+fn pipeline_of_300_cells(surface: &Path, dir: &Path, flag: &str) -> std::process::Output {
+    let out = run([
+        "pipeline",
+        surface.to_str().unwrap(),
+        "--cells",
+        "300",
+        flag,
+        "-o",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    out
 }
 
 /// A surface exported with corners of its own per face (an unwelded mesh, as from STL) and some
@@ -142,16 +148,7 @@ fn pipeline_repairs_an_unwelded_surface_wound_both_ways() {
     let surface = tmp.join("unwelded.obj");
     std::fs::write(&surface, text).unwrap();
     let dir = tmp.join("out");
-    let out = run([
-        "pipeline",
-        surface.to_str().unwrap(),
-        "--cells",
-        "300",
-        "-q",
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
+    let out = pipeline_of_300_cells(&surface, &dir, "-q");
     let repeated = next - 1 - welded.vertices.len();
     for warning in [
         format!("{repeated} vertices repeat the position of another"),

@@ -20,9 +20,9 @@ mod locate;
 mod principal;
 mod strokes;
 
-pub use flatten::{flatten, flatten_viewed, Distortion, Flattener, Flattening, Point2};
 #[cfg(test)]
 pub(crate) use flatten::lifted_grid;
+pub use flatten::{flatten, flatten_viewed, Distortion, Flattener, Flattening, Point2};
 pub use lattice::{Corner, Lattice};
 pub use strokes::{read_strokes, sixfold_mean};
 
