@@ -3,7 +3,6 @@
 //! one orientation of it is as good as the other.
 
 use super::PolyMesh;
-use std::collections::HashMap;
 
 impl PolyMesh {
     /// Reverses the faces that run an edge the same way as the neighbour across it, so that
@@ -11,25 +10,25 @@ impl PolyMesh {
     /// returns how many were reversed. A mesh that cannot be oriented (a Moebius strip) or
     /// whose edges join more than two faces is left as it is, for validation to name.
     pub fn orient_faces_consistently(&mut self) -> usize {
-        let mut edges: HashMap<[usize; 2], Vec<(usize, bool)>> = HashMap::new();
+        // Each use of an edge as (low end, high end, face, forward); sorting groups the uses of
+        // each edge (faster than hashing for large meshes).
+        let mut uses: Vec<(usize, usize, usize, bool)> = Vec::new();
         for (f, face) in self.faces.iter().enumerate() {
             for k in 0..face.len() {
                 let (a, b) = (face[k], face[(k + 1) % face.len()]);
                 if a != b {
-                    edges
-                        .entry([a.min(b), a.max(b)])
-                        .or_default()
-                        .push((f, a < b));
+                    uses.push((a.min(b), a.max(b), f, a < b));
                 }
             }
         }
+        uses.sort_unstable();
         let mut neighbours: Vec<Vec<(usize, bool)>> = vec![Vec::new(); self.faces.len()];
-        for sides in edges.values() {
-            match sides[..] {
-                [(f, f_forward), (g, g_forward)] => {
+        for run in uses.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+            match run {
+                [(_, _, f, f_forward), (_, _, g, g_forward)] => {
                     let same = f_forward == g_forward;
-                    neighbours[f].push((g, same));
-                    neighbours[g].push((f, same));
+                    neighbours[*f].push((*g, same));
+                    neighbours[*g].push((*f, same));
                 }
                 [_] => {}
                 _ => return 0,
