@@ -4,12 +4,13 @@ use honeycomb::analysis::spherical_image;
 use honeycomb::export::read_structure;
 use honeycomb::mesh::{read_mesh, write_atomically};
 use honeycomb::render::{
-    check_width, quads_scene, spherical_scene, walls_scene, Coloring, View, WallMeasure,
+    check_width, quads_scene, shading_scene, spherical_scene, walls_scene, Coloring, DesignLight,
+    View, WallMeasure,
 };
 use honeycomb::structure::measure as measure_structure;
 use honeycomb::surface::Surface;
-use honeycomb::{Error, Result};
-use std::path::PathBuf;
+use honeycomb::{Error, Result, Vec3};
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -39,6 +40,11 @@ pub struct Args {
     /// each by its planarity delta_face, red above 0.01.
     #[arg(long, conflicts_with = "color")]
     pub quads: bool,
+    /// Draw a shading device's cells instead (made with --light), each by the light it lets
+    /// through against the same cell along S's normals (DIR/report.json's light and depth;
+    /// needs S too), red above the 0.5 asked.
+    #[arg(long, conflicts_with_all = ["color", "quads", "spherical"])]
+    pub shading: bool,
     /// With --spherical: areas within this of 0 (steradians) count as zero.
     #[arg(long, default_value_t = 1e-3)]
     pub tolerance: f64,
@@ -70,7 +76,13 @@ pub fn run(args: Args) -> Result<()> {
         || args.dir.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let (scene, what) = if args.quads {
+    let (scene, what) = if args.shading {
+        let light = design_light(&args.dir)?;
+        let surface = Surface::from_mesh(&read_mesh(&surface_path(&args, "--shading")?)?.mesh)?;
+        let camera = args.view.camera(&h.base.vertices);
+        let title = format!("{name}: light let through");
+        shading_scene(&h, &conn, &surface, light, title, camera, args.width)
+    } else if args.quads {
         let path = args.dir.join("quads.obj");
         if let Ok(false) = path.try_exists() {
             return Err(Error::Parameter(format!(
@@ -99,19 +111,7 @@ pub fn run(args: Args) -> Result<()> {
     } else {
         // Closeness and axis are measured against S; the others need only M.
         let surface = if measure.needs_surface() {
-            let path = args
-                .surface
-                .clone()
-                .unwrap_or_else(|| args.dir.join("surface.obj"));
-            // Only an absent file is "does not exist": a FIFO, a device or a directory is
-            // refused by the reader, without being opened.
-            if let Ok(false) = path.try_exists() {
-                return Err(Error::Parameter(format!(
-                    "--color {} needs the design surface: {} does not exist (give --surface S)",
-                    args.color,
-                    path.display()
-                )));
-            }
+            let path = surface_path(&args, &format!("--color {}", args.color))?;
             Surface::from_mesh(&read_mesh(&path)?.mesh)?
         } else {
             Surface::from_mesh(&h.base)?
@@ -148,4 +148,45 @@ pub fn run(args: Args) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The design surface's file (`--surface`, else DIR/surface.obj), which `what` needs.
+fn surface_path(args: &Args, what: &str) -> Result<PathBuf> {
+    let path = args
+        .surface
+        .clone()
+        .unwrap_or_else(|| args.dir.join("surface.obj"));
+    // Only an absent file is "does not exist": a FIFO, a device or a directory is refused by
+    // the reader, without being opened.
+    if let Ok(false) = path.try_exists() {
+        return Err(Error::Parameter(format!(
+            "{what} needs the design surface: {} does not exist (give --surface S)",
+            path.display()
+        )));
+    }
+    Ok(path)
+}
+
+/// The light a shading device in `dir` was made for, from its report.json.
+fn design_light(dir: &Path) -> Result<DesignLight> {
+    let path = dir.join("report.json");
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| Error::Parameter(format!("--shading reads {}: {e}", path.display())))?;
+    let report: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| Error::Parameter(format!("{}: not JSON: {e}", path.display())))?;
+    let shading = &report["shading"];
+    let direction: Option<Vec<f64>> = shading["light"]["direction"]
+        .as_array()
+        .and_then(|d| d.iter().map(|c| c.as_f64()).collect());
+    match (direction.as_deref(), shading["depth"].as_f64()) {
+        (Some(&[x, y, z]), Some(depth)) if depth > 0.0 && depth.is_finite() => Ok(DesignLight {
+            direction: Vec3::new(x, y, z),
+            depth,
+        }),
+        _ => Err(Error::Parameter(format!(
+            "--shading draws a shading device, and {} has no light and depth (its \"shading\"): \
+             make the honeycomb with --light DX,DY,DZ",
+            path.display()
+        ))),
+    }
 }

@@ -4,6 +4,7 @@
 mod common;
 
 use common::{assert_clean_failure, demo, quad_delta, read_json, read_written_mesh, run, TempDir};
+use honeycomb::error::rounded;
 use std::collections::HashSet;
 
 fn fills(svg: &str) -> Vec<String> {
@@ -358,4 +359,66 @@ fn the_quads_picture_shows_which_quads_are_not_flat_enough() {
     let plain = tmp.join("plain");
     demo(&plain, &["--vertices", "300"]);
     assert_clean_failure(&render(&plain), &["quads.obj", "--quads zigzag"], None);
+}
+
+/// `render DIR --shading` draws a shading device's cells, each by the light it lets through
+/// against the same cell along S's normals (the report's light and depth), red above the 0.5
+/// asked: one polygon per cell, the red ones those whose share, measured here from the written
+/// meshes, is over half their reference's.
+#[test]
+fn the_shading_picture_shows_where_the_light_leaks() {
+    use honeycomb::analysis::{extruded_along_normals, light_share, DEFAULT_LIGHT_SAMPLES};
+    let tmp = TempDir::new("render-shading");
+    let dir = tmp.join("s");
+    demo(&dir, &["--vertices", "600", "--light", "0.6,0.6,-0.5"]);
+    let report = read_json(&dir, "report.json");
+    let shading = &report["shading"];
+    let light: Vec<f64> = (shading["light"]["direction"].as_array().unwrap().iter())
+        .map(|c| c.as_f64().unwrap())
+        .collect();
+    let light = honeycomb::Vec3::new(light[0], light[1], light[2]);
+    let depth = shading["depth"].as_f64().unwrap();
+    let (h, conn) = honeycomb::export::read_structure(&dir).unwrap();
+    let surface = honeycomb::Surface::read(dir.join("surface.obj")).unwrap();
+    let reference = extruded_along_normals(&h.base, &conn, &surface, depth);
+    let after = light_share(&h, light, DEFAULT_LIGHT_SAMPLES).per_cell;
+    let before = light_share(&reference, light, DEFAULT_LIGHT_SAMPLES).per_cell;
+    // A reference that lets through under 5% of a cell counts as 5%.
+    let over = (after.iter().zip(&before))
+        .filter(|(a, b)| **a > 0.5 * b.max(0.05))
+        .count();
+    let out = tmp.join("shading.svg");
+    let render = |dir: &std::path::Path| {
+        run([
+            "render",
+            dir.to_str().unwrap(),
+            "--shading",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+    };
+    let r = render(&dir);
+    assert!(r.status.success(), "{}", common::stderr(&r));
+    let svg = std::fs::read_to_string(&out).unwrap();
+    let cells = svg.lines().filter(|l| l.contains("class=\"cell\"")).count();
+    assert_eq!(cells, h.base.faces.len());
+    assert!(svg.contains("light ratio"), "legend");
+    assert_eq!(fills(&svg).iter().filter(|c| *c == RED).count(), over);
+    let verdict = if over == 0 {
+        format!("all {cells} cells within 0.5")
+    } else {
+        format!("{over} of {cells} cells over 0.5")
+    };
+    assert!(svg.contains(&verdict), "{verdict}");
+    // The whole device's shares, as the report has them.
+    let stdout = String::from_utf8_lossy(&r.stdout).to_string();
+    let share = |key: &str| shading["light"][key].as_f64().unwrap();
+    assert!(
+        stdout.contains(&format!("let through {}", rounded(share("after"), 3))),
+        "{stdout}"
+    );
+    // A honeycomb made without a light: one clear error naming the report and the option.
+    let plain = tmp.join("plain");
+    demo(&plain, &["--vertices", "300"]);
+    assert_clean_failure(&render(&plain), &["report.json", "--light"], None);
 }

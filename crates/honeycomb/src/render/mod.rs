@@ -1,11 +1,13 @@
 //! Pictures of honeycombs for people: colour-coded walls (paper Fig. 8) with a colour bar, the
-//! quads that cap them, and the spherical image (Figs. 4-5).
+//! quads that cap them, a shading device's cells by the light they let through, and the
+//! spherical image (Figs. 4-5).
 
 mod colormap;
 mod legend;
 mod measure;
 mod quads;
 mod scene;
+mod shading;
 mod spherical;
 mod view;
 mod walls;
@@ -15,6 +17,7 @@ pub use legend::Ramp;
 pub use measure::WallMeasure;
 pub use quads::quads_scene;
 pub use scene::{escape, Scene, Shape, TextStyle};
+pub use shading::{shading_scene, DesignLight};
 pub use spherical::spherical_scene;
 pub use view::{Camera, View};
 pub use walls::{polygons_scene, walls_scene, Coloring};
