@@ -86,7 +86,7 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     let tmp = TempDir::new("pipeline");
     let surface = surface_file(&tmp, "roof");
     let dir = tmp.join("out");
-    let out = pipeline_of_300_cells(&surface, &dir, "--json");
+    pipeline_of_300_cells(&surface, &dir, "--json");
     for file in [
         "initial.obj",
         "init.json",
