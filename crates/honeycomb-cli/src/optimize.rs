@@ -5,7 +5,7 @@ use honeycomb::analysis::read_directions;
 use honeycomb::error::rounded;
 use honeycomb::geometry::{parse_direction, read_axes};
 use honeycomb::mesh::{
-    check_base_near_surface, nonconvex_faces, read_mesh, read_surface, LoadedMesh, OutputDir,
+    check_base_near_surface, nonconvex_faces, read_base, read_surface, LoadedMesh, OutputDir,
     PolyMesh,
 };
 use honeycomb::report::Report;
@@ -333,13 +333,13 @@ pub fn one_variant<'a>(flags: &[(bool, &'a str)]) -> Result<Option<&'a str>> {
     Ok(given.first().copied())
 }
 
-/// Reads a mesh, passing the reader's warnings to stderr.
-pub fn load(path: &Path, output: Output) -> Result<PolyMesh> {
-    warned(read_mesh(path)?, output)
+/// Reads a base mesh (vertices at one position joined), passing the reader's warnings to
+/// stderr.
+pub fn load_base(path: &Path, output: Output) -> Result<PolyMesh> {
+    warned(read_base(path)?, output)
 }
 
-/// Reads a design surface (vertices at one position joined), passing the reader's warnings
-/// to stderr.
+/// Reads a design surface (repaired), passing the reader's warnings to stderr.
 pub fn load_surface(path: &Path, output: Output) -> Result<PolyMesh> {
     warned(read_surface(path)?, output)
 }
@@ -517,8 +517,8 @@ pub fn run(args: Args) -> Result<()> {
     // Parameters first: a typo should not wait for a large mesh to load.
     args.opts.options()?;
     let output = args.opts.output();
-    let base =
-        BaseMesh::from_mesh(load(&args.base, output)?).map_err(|e| e.about_file(&args.base))?;
+    let base = BaseMesh::from_mesh(load_base(&args.base, output)?)
+        .map_err(|e| e.about_file(&args.base))?;
     let surface = match &args.opts.surface {
         Some(path) => {
             let surface =

@@ -215,6 +215,49 @@ fn non_manifold_edge() {
     assert!(line.contains("1-2") || line.contains("2-1"), "{line}");
 }
 
+/// A base mesh whose faces have corners of their own (an unwelded export) is joined, with a
+/// warning: taken as it was, each cell stood alone and `optimize` made a honeycomb of
+/// separate cells.
+#[test]
+fn unwelded_base_mesh_is_joined() {
+    let dir = TempDir::new("unwelded_base_mesh");
+    let (vertices, faces) = hexagon_pair();
+    let mut own = Vec::new();
+    let mut cells = Vec::new();
+    for face in &faces {
+        cells.push((own.len()..own.len() + face.len()).collect());
+        own.extend(face.iter().map(|&v| vertices[v]));
+    }
+    let welded = dir.write("welded.obj", &obj(&vertices, &faces));
+    let unwelded = dir.write("unwelded.obj", &obj(&own, &cells));
+    let optimized = |base: &Path, name: &str| {
+        let out = dir.join(name);
+        let output = run([
+            "optimize".as_ref(),
+            base.as_os_str(),
+            "-q".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let report = std::fs::read_to_string(out.join("report.json")).unwrap();
+        (stderr(&output), report)
+    };
+    let (warnings, joined) = optimized(&unwelded, "joined");
+    assert!(
+        warnings.contains("2 vertices repeat the position of another"),
+        "{warnings}"
+    );
+    let (_, reference) = optimized(&welded, "reference");
+    let key = |report: &str, name: &str| {
+        let v: serde_json::Value = serde_json::from_str(report).unwrap();
+        v[name].clone()
+    };
+    for name in ["vertices", "edges", "faces", "omega_max_deg"] {
+        assert_eq!(key(&joined, name), key(&reference, name), "{name}");
+    }
+}
+
 #[test]
 fn inconsistent_orientation() {
     // Not on the list, but the neighbour of the case above: two faces, one flipped.

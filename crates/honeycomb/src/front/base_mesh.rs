@@ -2,7 +2,7 @@
 
 use crate::error::Result;
 use crate::geometry::Vec3;
-use crate::mesh::{read_mesh, validate_base_mesh, Connectivity, PolyMesh};
+use crate::mesh::{read_base, repair_base_mesh, validate_base_mesh, Connectivity, PolyMesh};
 use std::path::Path;
 
 /// A trivalent polygon mesh that an optimization can start from: every vertex of valence 2 or
@@ -36,8 +36,10 @@ impl BaseMesh {
         BaseMesh::from_mesh(PolyMesh::new(vertices, cells))
     }
 
-    /// Checks a polygon mesh as a base mesh.
-    pub fn from_mesh(mesh: PolyMesh) -> Result<BaseMesh> {
+    /// Checks a polygon mesh as a base mesh, its vertices at one position joined
+    /// ([`crate::mesh::repair_base_mesh`]).
+    pub fn from_mesh(mut mesh: PolyMesh) -> Result<BaseMesh> {
+        repair_base_mesh(&mut mesh);
         let connectivity = validate_base_mesh(&mesh)?;
         Ok(BaseMesh { mesh, connectivity })
     }
@@ -45,7 +47,7 @@ impl BaseMesh {
     /// Reads a base mesh (OBJ, OFF or PLY); errors name the file.
     pub fn read(path: impl AsRef<Path>) -> Result<BaseMesh> {
         let path = path.as_ref();
-        let mesh = read_mesh(path)?.mesh;
+        let mesh = read_base(path)?.mesh;
         BaseMesh::from_mesh(mesh).map_err(|e| e.about_file(path))
     }
 

@@ -11,11 +11,12 @@ mod validate;
 pub use connectivity::Connectivity;
 pub use convexity::nonconvex_faces;
 pub use io::{
-    read_mesh, read_surface, replace_folder, write_atomically, write_mesh, write_output_dir,
-    LoadedMesh, OutputDir, Outputs, Previous, Verdict,
+    read_base, read_mesh, read_surface, replace_folder, write_atomically, write_mesh,
+    write_output_dir, LoadedMesh, OutputDir, Outputs, Previous, Verdict,
 };
 pub(crate) use orientation::orientation_flips;
 pub use polymesh::PolyMesh;
 pub use validate::{
-    check_base_near_surface, repair_surface_mesh, validate_base_mesh, validate_surface_mesh,
+    check_base_near_surface, repair_base_mesh, repair_surface_mesh, validate_base_mesh,
+    validate_surface_mesh,
 };

@@ -19,18 +19,27 @@ pub const MIN_EXTENT: f64 = 1e-6;
 /// (its corners lie on one line): its normal and any map of it are undefined.
 const FLAT_FACE: f64 = 1e-12;
 
+/// Repairs a base mesh's file where it gives its faces corners of their own (an unwelded
+/// export): otherwise each cell would stand alone, a honeycomb of separate cells. Returns
+/// what was repaired, a sentence. A base mesh's orientation is the designer's to fix.
+pub fn repair_base_mesh(mesh: &mut PolyMesh) -> Vec<String> {
+    let joined = mesh.join_coincident_vertices();
+    (joined > 0)
+        .then(|| {
+            format!(
+                "{joined} vertices repeat the position of another and were joined to it (the \
+                 file gives faces corners of their own); vertex numbers count the joined mesh"
+            )
+        })
+        .into_iter()
+        .collect()
+}
+
 /// Repairs what a design surface's file often gets wrong where the repair is plain: vertices
 /// it repeats at one position are joined, faces wound against their neighbours turned back.
 /// Returns what was repaired, a sentence each.
 pub fn repair_surface_mesh(mesh: &mut PolyMesh) -> Vec<String> {
-    let mut repaired = Vec::new();
-    let joined = mesh.join_coincident_vertices();
-    if joined > 0 {
-        repaired.push(format!(
-            "{joined} vertices repeat the position of another and were joined to it (the file \
-             gives faces corners of their own); vertex numbers count the joined mesh"
-        ));
-    }
+    let mut repaired = repair_base_mesh(mesh);
     let turned = mesh.orient_faces_consistently();
     if turned > 0 {
         repaired.push(format!(

@@ -74,11 +74,21 @@ pub fn read_mesh(path: &Path) -> Result<LoadedMesh> {
 /// Reads a design surface as [`read_mesh`] does, repaired
 /// ([`crate::mesh::repair_surface_mesh`]) with a warning for each repair.
 pub fn read_surface(path: &Path) -> Result<LoadedMesh> {
+    read_repaired(path, crate::mesh::repair_surface_mesh)
+}
+
+/// Reads a base mesh as [`read_mesh`] does, repaired ([`crate::mesh::repair_base_mesh`]) with
+/// a warning for each repair.
+pub fn read_base(path: &Path) -> Result<LoadedMesh> {
+    read_repaired(path, crate::mesh::repair_base_mesh)
+}
+
+fn read_repaired(path: &Path, repair: fn(&mut PolyMesh) -> Vec<String>) -> Result<LoadedMesh> {
     let mut loaded = read_mesh(path)?;
-    for repair in crate::mesh::repair_surface_mesh(&mut loaded.mesh) {
+    for repaired in repair(&mut loaded.mesh) {
         loaded
             .warnings
-            .push(format!("{}: {repair}", path.display()));
+            .push(format!("{}: {repaired}", path.display()));
     }
     Ok(loaded)
 }
