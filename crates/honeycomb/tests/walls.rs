@@ -145,6 +145,50 @@ fn uniform_walls_are_parallel() {
     );
 }
 
+/// Uniform walls on a surface that folds over seen along its mean normal (two thirds of a
+/// cylinder around its axis) do not exist: every parallel axis lies in S somewhere. The
+/// pipeline says so and stands the walls across S instead, along its normals on this
+/// developable.
+#[test]
+fn uniform_walls_on_a_surface_that_folds_over_in_plan_are_walls_across() {
+    let (r, n, m) = (5.0, 80, 40);
+    let mut vertices = Vec::new();
+    for j in 0..=m {
+        for i in 0..=n {
+            let a = (-120.0 + 240.0 * i as f64 / n as f64).to_radians();
+            vertices.push(Vec3::new(
+                r * a.cos(),
+                r * a.sin(),
+                20.0 * j as f64 / m as f64,
+            ));
+        }
+    }
+    let mut faces = Vec::new();
+    for j in 0..m {
+        for i in 0..n {
+            let a = j * (n + 1) + i;
+            faces.push(vec![a, a + 1, a + n + 2]);
+            faces.push(vec![a, a + n + 2, a + n + 1]);
+        }
+    }
+    let surface = PolyMesh::new(vertices, faces);
+    let mut options = PipelineOptions::new(300);
+    options.options.walls = Walls::Uniform;
+    let made = made(&surface, &options).unwrap();
+    assert!(made.report.honeycomb);
+    assert_eq!(made.report.walls, Walls::Across);
+    assert!(
+        (made.report.notes.iter()).any(|n| n.contains("no parallel axes stand on it")),
+        "{:?}",
+        made.report.notes
+    );
+    assert!(
+        made.measures.axis_normal_deg.mean < 5.0,
+        "{:?}",
+        made.measures
+    );
+}
+
 /// A vertical band around a hole (a developable closed on itself): no flattening lays cells of
 /// one size on it, `init` says so instead of laying a few, and the pipeline remeshes it with
 /// the field method and stands the walls across it.

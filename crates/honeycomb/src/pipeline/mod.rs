@@ -11,6 +11,7 @@
 //!   while the walls across S are one.
 //! - [`Walls::Uniform`]: S seen along its mean normal, a regular grid laid in plan view and
 //!   lifted: a honeycomb with parallel node axes (vertical walls on a roof) from the start.
+//!   Where S folds over in that view, no parallel axes stand on it: walls across S instead.
 //! - [`Walls::Direction`]: the same seen along a given direction.
 //! - [`Walls::Free`]: the guided projection of the ARAP mesh from walls orthogonal to S, the
 //!   axes wherever it leaves them (the paper's algorithm).
@@ -20,7 +21,7 @@ mod walls;
 pub use walls::Walls;
 
 use crate::error::{rounded, short_vector, Error, Result};
-use crate::init::{init, Align, Flattener, InitOptions, Initialized, Method};
+use crate::init::{flatten_viewed, init, Align, Flattener, InitOptions, Initialized, Method};
 use crate::mesh::{validate_surface_mesh, PolyMesh};
 use crate::optimize::{
     optimize, optimize_made_mesh, Attempt, AxesOptions, Frame, OptimizeOptions, Optimized,
@@ -115,6 +116,20 @@ pub fn pipeline(
     // Variants solve a plan-view mesh by the guided projection; their axes are their own.
     let walls = match options.walls {
         Walls::Across if options.optimize.is_variant() => Walls::Free,
+        w => w,
+    };
+    let walls = match walls {
+        Walls::Uniform if !options.init_chosen => match seen_in_plan(surface) {
+            Ok(()) => walls,
+            Err(e) => {
+                notes.push(format!(
+                    "seen along its mean normal: {}; no parallel axes stand on it, and these \
+                     are walls across S (the default)",
+                    message(&e)
+                ));
+                Walls::Across
+            }
+        },
         w => w,
     };
     let mut attempts = attempts(&options.init, walls);
@@ -268,6 +283,13 @@ fn message(e: &Error) -> String {
         Error::Mesh(m) | Error::Parameter(m) | Error::Solver(m) | Error::Unsuited(m) => m.clone(),
         e => e.to_string(),
     }
+}
+
+/// Whether `surface` seen along its mean normal (or the view nearby that sees most of it) lies
+/// in plan without folding over, as uniform walls need: otherwise why not.
+fn seen_in_plan(surface: &PolyMesh) -> Result<()> {
+    let (vertices, triangles) = surface.star_triangulated();
+    flatten_viewed(&vertices, &triangles, Flattener::Project, None).map(|_| ())
 }
 
 /// The base mesh for `walls`, with the notes of what it took.
@@ -859,8 +881,9 @@ fn is_exact(m: &Measures) -> bool {
 }
 
 /// The plan-view base mesh of uniform walls: S seen along its mean normal or the direction
-/// given. Uniform walls on a surface that folds over seen along its mean normal take the ARAP
-/// grid instead (a note says so); a direction given is kept, or refused.
+/// given. Uniform walls on a surface that folds over seen along its mean normal are walls
+/// across S (see [`pipeline`]) unless the caller chose the grid; then they take the ARAP grid
+/// (a note says so). A direction given is kept, or refused.
 fn plan_view(
     surface: &PolyMesh,
     init_options: &InitOptions,
