@@ -29,7 +29,7 @@ pub use strokes::{read_strokes, sixfold_mean};
 use crate::error::{about, rounded, rounded_down, Error, Result};
 use crate::geometry::Vec3;
 use crate::mesh::{
-    repair_surface_mesh, validate_base_mesh, validate_surface_mesh, Connectivity, PolyMesh,
+    validate_base_mesh, validate_repaired_surface, validate_surface_mesh, Connectivity, PolyMesh,
 };
 use crate::surface::Surface;
 use locate::Locator;
@@ -465,13 +465,18 @@ const MIN_COVERED_SHARE: f64 = 0.5;
 pub fn init(surface: &PolyMesh, options: &InitOptions) -> Result<Initialized> {
     let start = Instant::now();
     options.validate()?;
-    let mut repaired = surface.clone();
-    let surface = if repair_surface_mesh(&mut repaired).is_empty() {
-        surface
-    } else {
-        &repaired
+    // A mesh that needs no repair (a pipeline's S, already repaired) is taken as it is.
+    let mut repaired = None;
+    let conn = match validate_surface_mesh(surface) {
+        Ok(conn) if !surface.has_coincident_vertices() => conn,
+        _ => {
+            let mut mesh = surface.clone();
+            let conn = validate_repaired_surface(&mut mesh)?;
+            repaired = Some(mesh);
+            conn
+        }
     };
-    let conn = validate_surface_mesh(surface)?;
+    let surface = repaired.as_ref().unwrap_or(surface);
     let components = conn.pieces(&vec![false; surface.faces.len()]).len();
     if components > 1 {
         return Err(Error::Mesh(format!(

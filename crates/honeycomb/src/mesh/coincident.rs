@@ -10,26 +10,10 @@ impl PolyMesh {
     /// others; returns how many were dropped. Two of them in one face stay apart: that face
     /// has an edge of zero length, which validation names.
     pub fn join_coincident_vertices(&mut self) -> usize {
-        // Adding 0.0 makes -0.0 and 0.0 one key.
-        let key = |v: usize| self.vertices[v].to_array().map(|c| (c + 0.0).to_bits());
-        let mut first: HashMap<[u64; 3], usize> = HashMap::with_capacity(self.vertices.len());
-        let mut into: Vec<usize> = (0..self.vertices.len())
-            .map(|v| *first.entry(key(v)).or_insert(v))
-            .collect();
-        for face in &self.faces {
-            for (k, &a) in face.iter().enumerate() {
-                for &b in &face[k + 1..] {
-                    if a != b && into.get(a) == into.get(b) && into.get(a).is_some() {
-                        into[a] = a;
-                        into[b] = b;
-                    }
-                }
-            }
-        }
-        let dropped = into.iter().enumerate().filter(|&(v, &w)| v != w).count();
-        if dropped == 0 {
+        let Some(into) = self.coincident_targets() else {
             return 0;
-        }
+        };
+        let dropped = into.iter().enumerate().filter(|&(v, &w)| v != w).count();
         let mut index = vec![usize::MAX; self.vertices.len()];
         let mut kept = Vec::with_capacity(self.vertices.len() - dropped);
         for (v, &w) in into.iter().enumerate() {
@@ -48,6 +32,35 @@ impl PolyMesh {
         }
         self.vertices = kept;
         dropped
+    }
+
+    /// Whether [`PolyMesh::join_coincident_vertices`] would join any.
+    pub fn has_coincident_vertices(&self) -> bool {
+        self.coincident_targets().is_some()
+    }
+
+    /// Per vertex, the vertex it is joined into (itself when kept); `None` when none is joined.
+    fn coincident_targets(&self) -> Option<Vec<usize>> {
+        // Adding 0.0 makes -0.0 and 0.0 one key.
+        let key = |v: usize| self.vertices[v].to_array().map(|c| (c + 0.0).to_bits());
+        let mut first: HashMap<[u64; 3], usize> = HashMap::with_capacity(self.vertices.len());
+        let mut into: Vec<usize> = (0..self.vertices.len())
+            .map(|v| *first.entry(key(v)).or_insert(v))
+            .collect();
+        for face in &self.faces {
+            for (k, &a) in face.iter().enumerate() {
+                for &b in &face[k + 1..] {
+                    if a != b && into.get(a) == into.get(b) && into.get(a).is_some() {
+                        into[a] = a;
+                        into[b] = b;
+                    }
+                }
+            }
+        }
+        into.iter()
+            .enumerate()
+            .any(|(v, &w)| v != w)
+            .then_some(into)
     }
 }
 

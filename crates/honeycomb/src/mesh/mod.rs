@@ -18,5 +18,5 @@ pub(crate) use orientation::orientation_flips;
 pub use polymesh::PolyMesh;
 pub use validate::{
     check_base_near_surface, repair_base_mesh, repair_surface_mesh, validate_base_mesh,
-    validate_surface_mesh,
+    validate_repaired_surface, validate_surface_mesh,
 };

@@ -50,6 +50,21 @@ pub fn repair_surface_mesh(mesh: &mut PolyMesh) -> Vec<String> {
     repaired
 }
 
+/// Accepts a design surface as [`validate_surface_mesh`] does, repaired first as
+/// [`repair_surface_mesh`] would (silently): its vertices at one position joined, and, when
+/// that mesh is refused, its faces turned to agree before it is checked again. A consistently
+/// wound mesh is not searched for faces to turn.
+pub fn validate_repaired_surface(mesh: &mut PolyMesh) -> Result<Connectivity> {
+    mesh.join_coincident_vertices();
+    validate_surface_mesh(mesh).or_else(|e| {
+        if mesh.orient_faces_consistently() > 0 {
+            validate_surface_mesh(mesh)
+        } else {
+            Err(e)
+        }
+    })
+}
+
 /// Accepts a design surface: any non-empty manifold polygon mesh with finite coordinates within
 /// `MAX_COORDINATE`, no isolated vertices, no zero-length edges and no face without area.
 pub fn validate_surface_mesh(mesh: &PolyMesh) -> Result<Connectivity> {

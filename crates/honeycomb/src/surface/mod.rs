@@ -154,8 +154,7 @@ impl Surface {
     /// # Ok::<(), honeycomb::Error>(())
     /// ```
     pub fn new(mut mesh: PolyMesh) -> Result<Surface> {
-        crate::mesh::repair_surface_mesh(&mut mesh);
-        crate::mesh::validate_surface_mesh(&mesh)?;
+        crate::mesh::validate_repaired_surface(&mut mesh)?;
         Surface::from_mesh(&mesh)
     }
 
