@@ -67,6 +67,17 @@ fn valid_base(dir: &TempDir) -> PathBuf {
 }
 
 /// `honeycomb optimize BASE -o DIR/out` must fail cleanly naming every keyword.
+/// `honeycomb optimize BASE -q -o OUT`.
+fn optimize_quietly(base: &Path, out: &Path) -> std::process::Output {
+    run([
+        "optimize".as_ref(),
+        base.as_os_str(),
+        "-q".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ])
+}
+
 fn optimize_fails(dir: &TempDir, base: &Path, keywords: &[&str]) -> String {
     let out = dir.join("out");
     let output = run([
@@ -232,13 +243,7 @@ fn unwelded_base_mesh_is_joined() {
     let unwelded = dir.write("unwelded.obj", &obj(&own, &cells));
     let optimized = |base: &Path, name: &str| {
         let out = dir.join(name);
-        let output = run([
-            "optimize".as_ref(),
-            base.as_os_str(),
-            "-q".as_ref(),
-            "-o".as_ref(),
-            out.as_os_str(),
-        ]);
+        let output = optimize_quietly(base, &out);
         assert!(output.status.success(), "{}", stderr(&output));
         let report = std::fs::read_to_string(out.join("report.json")).unwrap();
         (stderr(&output), report)
@@ -764,13 +769,7 @@ fn every_line_ending_and_a_byte_order_mark_read_alike() {
     ] {
         let base = dir.write(name, &text);
         let out = dir.join(&format!("out-{name}"));
-        let output = run([
-            "optimize".as_ref(),
-            base.as_os_str(),
-            "-q".as_ref(),
-            "-o".as_ref(),
-            out.as_os_str(),
-        ]);
+        let output = optimize_quietly(&base, &out);
         common::assert_success(&output, name);
         let report = common::read_json(&out, "report.json");
         assert_eq!(report["vertices"], 24, "{name}: {report}");

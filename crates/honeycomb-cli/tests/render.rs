@@ -328,15 +328,7 @@ fn the_quads_picture_shows_which_quads_are_not_flat_enough() {
         honeycomb::mesh::io::write_obj(&mut file, mesh).unwrap();
     }
     let out = tmp.join("quads.svg");
-    let render = |dir: &std::path::Path| {
-        run([
-            "render",
-            dir.to_str().unwrap(),
-            "--quads",
-            "-o",
-            out.to_str().unwrap(),
-        ])
-    };
+    let render = |dir: &std::path::Path| render_drawing(dir, "--quads", &out);
     let picture = |dir: &std::path::Path| {
         let r = render(dir);
         assert!(r.status.success(), "{}", common::stderr(&r));
@@ -388,15 +380,7 @@ fn the_shading_picture_shows_where_the_light_leaks() {
         .filter(|(a, b)| **a > 0.5 * b.max(0.05))
         .count();
     let out = tmp.join("shading.svg");
-    let render = |dir: &std::path::Path| {
-        run([
-            "render",
-            dir.to_str().unwrap(),
-            "--shading",
-            "-o",
-            out.to_str().unwrap(),
-        ])
-    };
+    let render = |dir: &std::path::Path| render_drawing(dir, "--shading", &out);
     let r = render(&dir);
     assert!(r.status.success(), "{}", common::stderr(&r));
     let svg = std::fs::read_to_string(&out).unwrap();
@@ -421,4 +405,19 @@ fn the_shading_picture_shows_where_the_light_leaks() {
     let plain = tmp.join("plain");
     demo(&plain, &["--vertices", "300"]);
     assert_clean_failure(&render(&plain), &["report.json", "--light"], None);
+}
+
+/// `honeycomb render DIR DRAWING -o OUT` (DRAWING: `--quads`, `--shading`, ...).
+fn render_drawing(
+    dir: &std::path::Path,
+    drawing: &str,
+    out: &std::path::Path,
+) -> std::process::Output {
+    run([
+        "render",
+        dir.to_str().unwrap(),
+        drawing,
+        "-o",
+        out.to_str().unwrap(),
+    ])
 }
