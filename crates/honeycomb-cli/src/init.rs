@@ -159,6 +159,12 @@ pub struct PipelineArgs {
     pub init: InitArgs,
     #[command(flatten)]
     pub opts: SolveArgs,
+    /// Where walls across S leave cells of uneven size (edge-length cv 0.12 or more), even them
+    /// out afterwards: every edge pulled towards the mean length, every wall held where the fit
+    /// put it. The axes lean a little more; up to 40 more iterations, kept only when clean and
+    /// more even (a note says what was traded)
+    #[arg(long)]
+    pub even_cells: bool,
     /// Output directory: the structure files, plus initial.obj, init.json and surface.obj.
     #[arg(short, long)]
     pub output: PathBuf,
@@ -182,6 +188,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
         init,
         init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,
         align_chosen: args.init.align.is_some(),
+        even_cells: args.even_cells,
         options: args.opts.options()?,
     };
     let output = args.opts.output();

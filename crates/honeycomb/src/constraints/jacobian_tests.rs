@@ -55,6 +55,8 @@ fn every_family_matches_finite_differences() {
     let normals = initial_normals(&mesh, &conn, &surface);
     let weights = Weights {
         guide: 1.0,
+        evenness: 0.3,
+        held_walls: 0.1,
         ..Weights::default()
     };
     let walls = WallRows::Consistency;
@@ -81,6 +83,8 @@ fn every_family_matches_finite_differences() {
         "closeness",
         "fairness_opposite_walls",
         "guide_axes_along_normals",
+        "edge_length",
+        "held_normals",
         "min_edge_length",
     ];
     assert_families_match(&mut fams, &x, &expected);

@@ -342,6 +342,8 @@ impl Options {
             boundary: self.w_boundary,
             fairness: self.w_fair.unwrap_or(Weights::default().fairness),
             guide: self.w_guide,
+            evenness: 0.0,
+            held_walls: 0.0,
         }
     }
 

@@ -33,6 +33,9 @@ pub struct PipelineOptions {
     /// principal directions where they agree (the straight polylines then carry the flattest
     /// quads), and the boundary everywhere else.
     pub align_chosen: bool,
+    /// Walls across S whose cells come out uneven are evened afterwards, the axes leaning a
+    /// little more (see `pipeline::evened`): up to 40 more iterations of the guided projection.
+    pub even_cells: bool,
     pub options: Options,
 }
 
@@ -43,6 +46,7 @@ impl PipelineOptions {
             init: InitOptions::new(CellSize::Cells(cells)),
             init_chosen: false,
             align_chosen: false,
+            even_cells: false,
             options: Options::default(),
         }
     }
@@ -101,6 +105,7 @@ impl PipelineOptions {
             // Shading sets the axes' targets per try (see `shading_pipeline`).
             across: AcrossOptions::default(),
             guided_fallback: true,
+            even_cells: self.even_cells,
         })
     }
 }

@@ -4,8 +4,8 @@
 use super::unknowns::{Block, Unknowns};
 use super::Weights;
 use crate::constraints::{
-    BoundaryCurve, Closeness, Layout, MinEdgeLength, Node2, Node3, Normalization, OppositeWalls,
-    PrescribedAxes, WallConsistency, WallPlane,
+    BoundaryCurve, Closeness, EdgeLength, HeldNormals, Layout, MinEdgeLength, Node2, Node3,
+    Normalization, OppositeWalls, PrescribedAxes, WallConsistency, WallPlane,
 };
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
@@ -122,6 +122,14 @@ impl<'m, 'a> ProblemBuilder<'m, 'a> {
         unknowns.allocate("vertices", vertices.iter().flat_map(|p| p.to_array()));
         unknowns.allocate("wall_normals", normals.iter().flat_map(|n| n.to_array()));
         debug_assert_eq!(unknowns.len(), layout.len());
+        let mut families = families(mesh, conn, surface, weights, walls);
+        if weights.held_walls > 0.0 {
+            families.push(Box::new(HeldNormals {
+                layout,
+                normals: normals.to_vec(),
+                weight: weights.held_walls,
+            }));
+        }
         ProblemBuilder {
             mesh,
             conn,
@@ -129,7 +137,7 @@ impl<'m, 'a> ProblemBuilder<'m, 'a> {
             walls,
             consistency: weights.consistency,
             unknowns,
-            families: families(mesh, conn, surface, weights, walls),
+            families,
         }
     }
 
@@ -274,6 +282,15 @@ where
             ends,
             weight: weights.guide,
             role: Role::Guide,
+        }));
+    }
+    if weights.evenness > 0.0 {
+        // The normalized frame's unit is the mean edge length.
+        families.push(Box::new(EdgeLength {
+            layout,
+            edges: conn.edges.clone(),
+            length: 1.0,
+            weight: weights.evenness,
         }));
     }
     families.retain(|c| c.num_rows() > 0);

@@ -21,6 +21,12 @@ pub struct Weights {
     /// first iterations; it fades by 0.3 per iteration. Off (0) by default: with it, the
     /// opposite-wall fairness (which favours parallel walls) is best turned off.
     pub guide: f64,
+    /// Every edge the mean length, fading like the fairness: cells of one size. Off (0) by
+    /// default; the pipeline evens uneven cells of walls across S with it.
+    pub evenness: f64,
+    /// Every wall normal held where it starts, fading like the fairness: with the evenness,
+    /// so that evening the cells does not turn the node axes away from where a fit put them.
+    pub held_walls: f64,
 }
 
 impl Default for Weights {
@@ -33,6 +39,8 @@ impl Default for Weights {
             boundary: 1.0,
             fairness: 3.0,
             guide: 0.0,
+            evenness: 0.0,
+            held_walls: 0.0,
         }
     }
 }

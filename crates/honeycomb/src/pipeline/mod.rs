@@ -29,7 +29,7 @@ use crate::optimize::{
 };
 use crate::reciprocal::{walls_across, Across, AcrossOptions, AxisTargets, Stage};
 use crate::report::Report;
-use crate::solve::IterationInfo;
+use crate::solve::{Cancel, IterationInfo};
 use crate::structure::{measure, Measures};
 use crate::surface::Surface;
 use std::time::Instant;
@@ -53,6 +53,8 @@ pub struct Strategy {
     /// projection of that mesh (else the unclean walls across if they are a honeycomb, or
     /// an error saying why there is none).
     pub guided_fallback: bool,
+    /// Uneven cells of clean walls across S are evened ([`evened`]).
+    pub even_cells: bool,
 }
 
 /// What the pipeline made.
@@ -394,6 +396,15 @@ fn solve_made(
             &options.across,
             progress,
         )? {
+            Ok(solved) if options.even_cells && options.across.targets == AxisTargets::Normals => {
+                return Ok(Ok(evened(
+                    solved,
+                    surface,
+                    model_surface,
+                    &options.optimize,
+                    progress,
+                )?))
+            }
             Ok(solved) => return Ok(Ok(solved)),
             Err(not_clean) if !fallback => return Ok(Err((not_clean.why, not_clean.iterations))),
             Err(not_clean) if !options.guided_fallback => {
@@ -796,9 +807,7 @@ fn repair(
 }
 
 /// The honeycomb `h` solved again by at most [`REPAIR_ITERATIONS`] of the guided projection
-/// from where it stands: its vertices and walls, without the opposite-wall fairness (which
-/// would flatten its axes) and without prescribed axes, every edge kept from collapsing (or
-/// as long as asked). `None` when the solve breaks down.
+/// from where it stands (see [`again_from`]). `None` when the solve breaks down.
 fn resolved(
     h: &crate::structure::Honeycomb,
     surface: &PolyMesh,
@@ -806,6 +815,26 @@ fn resolved(
     options: &OptimizeOptions,
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Option<(Optimized, Measures, Option<String>)>> {
+    let again = again_from(h, options, REPAIR_ITERATIONS);
+    solved_again(
+        h,
+        surface,
+        model_surface,
+        &again,
+        options.thickness,
+        progress,
+    )
+}
+
+/// Options that solve the honeycomb `h` again by at most `iterations` of the guided projection
+/// from where it stands: its vertices and walls, without the opposite-wall fairness (which
+/// would flatten its axes) and without prescribed axes, every edge kept from collapsing (or
+/// as long as asked).
+fn again_from(
+    h: &crate::structure::Honeycomb,
+    options: &OptimizeOptions,
+    iterations: usize,
+) -> OptimizeOptions {
     let mut again = options.clone();
     again.initial_normals = Some((0..h.edges.len()).map(|e| h.wall_normal(e)).collect());
     again.weights.fairness = 0.0;
@@ -816,16 +845,127 @@ fn resolved(
     again.min_edge = options
         .min_edge
         .or(Some(REPAIR_MIN_EDGE * h.base.mean_edge_length()));
-    again.solver.max_iterations = REPAIR_ITERATIONS;
-    let mut optimized = match optimize(&h.base, Some(surface), &again, progress) {
+    again.solver.max_iterations = iterations;
+    again
+}
+
+/// `h` solved with the options `again` (see [`again_from`]), measured, and made thinner
+/// where its walls cross unless `thickness` was asked. `None` when the solve breaks down.
+fn solved_again(
+    h: &crate::structure::Honeycomb,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    again: &OptimizeOptions,
+    thickness: Option<f64>,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Option<(Optimized, Measures, Option<String>)>> {
+    let mut optimized = match optimize(&h.base, Some(surface), again, progress) {
         Ok(optimized) => optimized,
         Err(Error::Solver(_)) => return Ok(None),
         Err(e) => return Err(e),
     };
     let mut measures = measure(&optimized.honeycomb, model_surface);
     let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
-    let thinner = uncross(h, conn, &mut measures, model_surface, options.thickness);
+    let thinner = uncross(h, conn, &mut measures, model_surface, thickness);
     Ok(Some((optimized, measures, thinner)))
+}
+
+/// Cells this uneven (edge-length cv) or more are evened ([`evened`]): what a designer's
+/// mesh of one cell size is asked to keep to.
+const UNEVEN_CELLS_CV: f64 = 0.12;
+/// Iterations of the evening at most.
+const EVENING_ITERATIONS: usize = 40;
+/// The evening's weights: every edge towards the mean length, every wall normal held where
+/// the fit put it. Their ratio sets the trade between even cells and axes along S's normals.
+const EVENNESS: f64 = 0.3;
+const HELD_WALLS: f64 = 0.1;
+/// An evening whose largest residual is still above this after so many iterations is given
+/// up: it has strayed into folding the walls, which it does not come back from.
+const EVENING_ON_TRACK: (usize, f64) = (20, 0.1);
+
+/// A clean honeycomb of walls across S whose cells are uneven (where the fitted sheet curves
+/// while S leans from its axes, docs/walls.md) solved again from where it stands with every
+/// edge pulled towards the mean length and every wall held where it is, both fading: the axes
+/// lean a little more, the cells even out. Kept when that is clean and more even; a note
+/// says what was traded either way.
+fn evened(
+    mut solved: Solved,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    options: &OptimizeOptions,
+    progress: &mut dyn FnMut(Step),
+) -> Result<Solved> {
+    let before = &solved.measures;
+    if before.edge_length_cv < UNEVEN_CELLS_CV {
+        return Ok(solved);
+    }
+    let start = Instant::now();
+    let h = &solved.optimized.honeycomb;
+    let mut again = again_from(h, options, EVENING_ITERATIONS);
+    again.weights.evenness = EVENNESS;
+    again.weights.held_walls = HELD_WALLS;
+    // A flag of the evening's own, so that it can give up without the caller's Ctrl-C.
+    let (asked, given_up) = (options.solver.cancel.clone(), Cancel::new());
+    again.solver.cancel = given_up.clone();
+    let mut spent = 0;
+    let evened = solved_again(
+        h,
+        surface,
+        model_surface,
+        &again,
+        options.thickness,
+        &mut |info| {
+            spent += 1;
+            let astray = spent >= EVENING_ON_TRACK.0 && info.max_residual > EVENING_ON_TRACK.1;
+            if asked.is_cancelled() || astray {
+                given_up.cancel();
+            }
+            progress(Step::Iteration("evening the cells", 1, info))
+        },
+    );
+    let evened = match evened {
+        Err(Error::Cancelled) if !asked.is_cancelled() => None,
+        evened => evened?,
+    };
+    let total = solved.report.iterations_total + spent;
+    let lean = |m: &Measures| rounded(m.axis_normal_deg.mean, 3);
+    let evened = evened.filter(|(_, m, _)| {
+        is_clean(m, options.min_edge) && m.edge_length_cv < before.edge_length_cv
+    });
+    let Some((optimized, measures, thinner)) = evened else {
+        solved.report.iterations_total = total;
+        solved.notes.push(format!(
+            "the cells are uneven (edge cv {}); evening them in {spent} iterations gave no \
+             clean honeycomb, so these are the cells as fitted",
+            rounded(before.edge_length_cv, 3)
+        ));
+        return Ok(solved);
+    };
+    let note = format!(
+        "the cells were evened in {spent} iterations: edge cv {} -> {}, the axes {} -> {} \
+         degrees from S's normals on average",
+        rounded(before.edge_length_cv, 3),
+        rounded(measures.edge_length_cv, 3),
+        lean(before),
+        lean(&measures)
+    );
+    let fitted = &solved.report;
+    let mut report = Report::new(
+        &optimized,
+        &measures,
+        fitted.seconds + start.elapsed().as_secs_f64(),
+    );
+    report.walls = fitted.walls;
+    report.iterations_total = total;
+    report.dropped_boundary_cells = fitted.dropped_boundary_cells;
+    report.trimmed_boundary_cells = fitted.trimmed_boundary_cells;
+    report.axis_field_iterations = fitted.axis_field_iterations;
+    solved.report = report;
+    solved.notes.push(note);
+    solved.notes.extend(thinner);
+    solved.optimized = optimized;
+    solved.measures = measures;
+    Ok(solved)
 }
 
 /// The guided projection with prescribed axes (shading's) made exact: the soft axes hold

@@ -1,6 +1,7 @@
 //! Tests across modules: scenarios of the solver, the variants, the edits and the base
 //! meshes on built-in surfaces (and on `../shared/data` where it is present).
 
+mod cells;
 mod edit;
 mod init;
 mod optimize;

@@ -1,0 +1,65 @@
+//! Cells of one size where walls across S leave them uneven (`PipelineOptions::even_cells`),
+//! judged on the meshes the pipeline makes.
+
+use crate::init::lifted_grid;
+use crate::mesh::PolyMesh;
+use crate::structure::measure;
+use crate::surface::Surface;
+use crate::{pipeline, Outcome, PipelineOptions, Progress};
+
+/// A steep bowl, `z = 1.5 r^2` over the unit square (slopes up to 65 degrees): a flattened
+/// lattice's cells on it come out uneven under walls across S.
+fn bowl() -> Surface {
+    let (vertices, triangles) =
+        lifted_grid(60, |x, y| 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2)));
+    let faces = triangles.iter().map(|t| t.to_vec()).collect();
+    Surface::new(PolyMesh::new(vertices, faces)).unwrap()
+}
+
+fn made(surface: &Surface, even_cells: bool) -> Outcome {
+    let options = PipelineOptions {
+        even_cells,
+        ..PipelineOptions::new(750)
+    };
+    pipeline(surface, &options, &mut Progress::silent()).unwrap()
+}
+
+/// Evened, the bowl's cells meet the evenness asked of a base mesh where the fitted walls
+/// across miss it, and stay a clean honeycomb on S whose axes lean at most half as much as
+/// parallel axes would.
+#[test]
+fn uneven_cells_of_walls_across_are_evened() {
+    let surface = bowl();
+    let fitted = measure(&made(&surface, false).honeycomb, &surface);
+    let evened = made(&surface, true);
+    let m = measure(&evened.honeycomb, &surface);
+    assert!(fitted.edge_length_cv > 0.12, "{}", fitted.edge_length_cv);
+    assert!(m.edge_length_cv <= 0.1, "cv {}", m.edge_length_cv);
+    assert!(m.omega_max_deg < 0.01 && m.delta_max < 1e-6, "{m:?}");
+    assert_eq!(m.nonconvex_walls, 0);
+    assert!(m.closeness_max < 0.05, "{}", m.closeness_max);
+    let (lean, parallel) = (m.axis_normal_deg.mean, m.parallel_baseline_deg.mean);
+    assert!(lean <= 0.5 * parallel, "lean {lean} against {parallel}");
+    assert!(m.axis_normal_deg.p95 < m.parallel_baseline_deg.p95);
+    assert!(
+        evened
+            .report
+            .notes
+            .iter()
+            .any(|n| n.contains("the cells were evened")),
+        "{:?}",
+        evened.report.notes
+    );
+}
+
+/// Cells that are even already are left as the fit made them.
+#[test]
+fn even_cells_are_left_alone() {
+    let (vertices, triangles) = lifted_grid(40, |x, y| 0.2 * (x * x - y * y));
+    let faces = triangles.iter().map(|t| t.to_vec()).collect();
+    let surface = Surface::new(PolyMesh::new(vertices, faces)).unwrap();
+    let (plain, asked) = (made(&surface, false), made(&surface, true));
+    assert!(plain.measures.edge_length_cv < 0.12);
+    assert_eq!(plain.honeycomb.base.vertices, asked.honeycomb.base.vertices);
+    assert_eq!(plain.report.iterations_total, asked.report.iterations_total);
+}
