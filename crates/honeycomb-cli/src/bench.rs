@@ -73,6 +73,9 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     pub walls: String,
+    /// With --roofs: uneven cells evened (as `pipeline --even-cells`).
+    #[arg(long, requires = "roofs")]
+    pub even_cells: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -95,6 +98,7 @@ pub fn run(args: Args) -> Result<()> {
             cells: args.cells,
             generated: args.generated,
             walls,
+            even_cells: args.even_cells,
             variants: args.variants,
             json: args.json,
         });

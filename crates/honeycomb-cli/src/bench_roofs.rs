@@ -32,6 +32,8 @@ pub struct RoofsArgs {
     pub cells: Vec<usize>,
     pub generated: bool,
     pub walls: Walls,
+    /// Uneven cells evened (`pipeline --even-cells`).
+    pub even_cells: bool,
     /// One row per variant (see [`VARIANTS`]) instead of the plain pipeline.
     pub variants: bool,
     pub json: bool,
@@ -191,7 +193,7 @@ pub fn run(args: RoofsArgs) -> Result<()> {
                 print!("{name:<28} {cells:>6} ");
                 let _ = std::io::Write::flush(&mut std::io::stdout());
             }
-            let row = bench_one(name, source, cells, args.walls, None);
+            let row = bench_one(name, source, cells, &args, None);
             print_row(&row, args.json)?;
         }
     }
@@ -227,7 +229,7 @@ fn run_variants(args: &RoofsArgs, surfaces: &[(String, Source)]) -> Result<()> {
                     print!("{name:<28} {variant:<11} {cells:>6} ");
                     let _ = std::io::Write::flush(&mut std::io::stdout());
                 }
-                let row = bench_one(name, source, cells, args.walls, Some(variant));
+                let row = bench_one(name, source, cells, args, Some(variant));
                 print_variant_row(&row, args.json)?;
             }
         }
@@ -306,7 +308,7 @@ fn bench_one(
     name: &str,
     source: &Source,
     cells: usize,
-    walls: Walls,
+    args: &RoofsArgs,
     variant_name: Option<&'static str>,
 ) -> Row {
     let row = |status, reason: Option<String>, figures| Row {
@@ -332,7 +334,8 @@ fn bench_one(
         return row("skipped", Some(reason), None);
     }
     let mut options = PipelineOptions::new(cells);
-    options.options.walls = walls;
+    options.options.walls = args.walls;
+    options.even_cells = args.even_cells;
     if let Some(name) = variant_name {
         options.options.variant = variant(name);
     }

@@ -321,12 +321,11 @@ impl<'a> Problem<'a> {
         }
         // With prescribed axes the walls turn far from where they start, and a node could settle
         // in the mirrored solution (a valence-2 node at 60 degrees, a flipped wall normal): every
-        // node keeps the side of its walls (see NodeOrientation). So it may where evenness
-        // reshapes the cells. Without either the guard is left out: on bases with non-convex
-        // cells (hexagonalminimal) it fought the start and left omega at 0.75 degrees instead
-        // of 3e-4.
+        // node keeps the side of its walls (see NodeOrientation). Without axes the guard is left
+        // out: on bases with non-convex cells (hexagonalminimal) it fought the start and left
+        // omega at 0.75 degrees instead of 3e-4.
         let (node3, node2) = node_walls(conn);
-        let guarded: Vec<&[(usize, f64)]> = if options.axes.is_some() || weights.evenness > 0.0 {
+        let guarded: Vec<&[(usize, f64)]> = if options.axes.is_some() {
             let two = node2.iter().map(|w| &w[..]);
             two.chain(node3.iter().map(|w| &w[..])).collect()
         } else {

@@ -879,9 +879,10 @@ const EVENING_ITERATIONS: usize = 40;
 /// the fit put it. Their ratio sets the trade between even cells and axes along S's normals.
 const EVENNESS: f64 = 0.3;
 const HELD_WALLS: f64 = 0.1;
-/// An evening whose largest residual is still above this after so many iterations is given
-/// up: it has strayed into folding the walls, which it does not come back from.
-const EVENING_ON_TRACK: (usize, f64) = (20, 0.1);
+/// An evening whose largest residual is still above `r` after `k` iterations, for any `(k, r)`
+/// here, is given up: those that end clean are closing in on exact by then, those that do not
+/// keep folding walls back and forth.
+const EVENING_ON_TRACK: [(usize, f64); 2] = [(25, 0.1), (30, 0.01)];
 
 /// A clean honeycomb of walls across S whose cells are uneven (where the fitted sheet curves
 /// while S leans from its axes, docs/walls.md) solved again from where it stands with every
@@ -916,7 +917,8 @@ fn evened(
         options.thickness,
         &mut |info| {
             spent += 1;
-            let astray = spent >= EVENING_ON_TRACK.0 && info.max_residual > EVENING_ON_TRACK.1;
+            let astray =
+                (EVENING_ON_TRACK.iter()).any(|&(k, r)| spent == k && info.max_residual > r);
             if asked.is_cancelled() || astray {
                 given_up.cancel();
             }

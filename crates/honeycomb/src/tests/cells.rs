@@ -7,13 +7,17 @@ use crate::structure::measure;
 use crate::surface::Surface;
 use crate::{pipeline, Outcome, PipelineOptions, Progress};
 
+/// The height field `height` over the unit square, `n` x `n` squares each cut in two.
+fn height_field(n: usize, height: impl Fn(f64, f64) -> f64) -> Surface {
+    let (vertices, triangles) = lifted_grid(n, height);
+    let faces = triangles.iter().map(|t| t.to_vec()).collect();
+    Surface::new(PolyMesh::new(vertices, faces)).unwrap()
+}
+
 /// A steep bowl, `z = 1.5 r^2` over the unit square (slopes up to 65 degrees): a flattened
 /// lattice's cells on it come out uneven under walls across S.
 fn bowl() -> Surface {
-    let (vertices, triangles) =
-        lifted_grid(60, |x, y| 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2)));
-    let faces = triangles.iter().map(|t| t.to_vec()).collect();
-    Surface::new(PolyMesh::new(vertices, faces)).unwrap()
+    height_field(60, |x, y| 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2)))
 }
 
 fn made(surface: &Surface, even_cells: bool) -> Outcome {
@@ -55,9 +59,7 @@ fn uneven_cells_of_walls_across_are_evened() {
 /// Cells that are even already are left as the fit made them.
 #[test]
 fn even_cells_are_left_alone() {
-    let (vertices, triangles) = lifted_grid(40, |x, y| 0.2 * (x * x - y * y));
-    let faces = triangles.iter().map(|t| t.to_vec()).collect();
-    let surface = Surface::new(PolyMesh::new(vertices, faces)).unwrap();
+    let surface = height_field(40, |x, y| 0.2 * (x * x - y * y));
     let (plain, asked) = (made(&surface, false), made(&surface, true));
     assert!(plain.measures.edge_length_cv < 0.12);
     assert_eq!(plain.honeycomb.base.vertices, asked.honeycomb.base.vertices);
