@@ -385,3 +385,27 @@ def test_a_missing_package_is_named(result, tmp_path, monkeypatch, method, packa
     args = (tmp_path / "x.3dm",) if method == "to_3dm" else ()
     with pytest.raises(ImportError, match=package.split(".")[0]):
         getattr(result, method)(*args)
+
+
+def bowl(n=61):
+    """The steep bowl z = 1.5 r^2 over [0, 1]^2 (r from its centre), triangulated."""
+    x, y = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n))
+    z = 1.5 * ((x - 0.5) ** 2 + (y - 0.5) ** 2)
+    vertices = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+    faces = []
+    for i in range(n - 1):
+        for j in range(n - 1):
+            a = i * n + j
+            b, c, d = a + 1, a + n, a + n + 1
+            faces += [[a, b, d], [a, d, c]]
+    return vertices, np.array(faces, dtype=np.int64)
+
+
+def test_even_cells_evens_a_steep_bowl():
+    surface = bowl()
+    fitted = honeycomb.pipeline(surface, cells=750)
+    evened = honeycomb.pipeline(surface, cells=750, even_cells=True)
+    assert evened.is_honeycomb, evened.why
+    assert fitted.measures["edge_length_cv"] > 0.12
+    assert evened.measures["edge_length_cv"] <= 0.1
+    assert any("the cells were evened" in n for n in evened.report["notes"])
