@@ -7,7 +7,7 @@
 //! folds `exp(w_t)` into the base and sets `w_t` back to zero (see [`SharedRotations`]).
 
 use super::layout::{put, triple};
-use crate::geometry::rotation::{apply, exp, exp_apply_derivative, multiply, Matrix3};
+use crate::geometry::rotation::{apply, apply_derivative, exp, multiply, right_jacobian, Matrix3};
 use crate::geometry::Vec3;
 use crate::solve::Constraint;
 use std::sync::{Arc, RwLock};
@@ -74,10 +74,12 @@ impl Constraint for RigidTriangles {
         for (t, p) in self.triangles.iter().enumerate() {
             let w = vector(x, self.rotations + t);
             let base = self.bases.get(t);
+            // One rotation turns the triangle's three sides.
+            let (r, jr) = (exp(w), right_jacobian(w));
             for k in 0..3 {
                 let u = apply(&base, self.sides[k]);
-                let side = vector(x, p[(k + 1) % 3]) - vector(x, p[k]) - apply(&exp(w), u);
-                let dw = exp_apply_derivative(w, u);
+                let side = vector(x, p[(k + 1) % 3]) - vector(x, p[k]) - apply(&r, u);
+                let dw = apply_derivative(&r, &jr, u);
                 for (d, r) in side.to_array().into_iter().enumerate() {
                     let row = 9 * t + 3 * k + d;
                     res[row] = r;

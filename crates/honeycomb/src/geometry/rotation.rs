@@ -37,9 +37,9 @@ pub fn exp(w: Vec3) -> Matrix3 {
     std::array::from_fn(|i| std::array::from_fn(|j| IDENTITY[i][j] + a * k[i][j] + b * k2[i][j]))
 }
 
-/// The derivative of `exp(w) v` with respect to `w`: `-exp(w) skew(v) J_r(w)`, with the right
-/// Jacobian `J_r(w) = I - (1 - cos t)/t^2 skew(w) + (t - sin t)/t^3 skew(w)^2`.
-pub fn exp_apply_derivative(w: Vec3, v: Vec3) -> Matrix3 {
+/// The right Jacobian of the exponential map, `J_r(w) = I - (1 - cos t)/t^2 skew(w) +
+/// (t - sin t)/t^3 skew(w)^2` with `t = |w|`.
+pub fn right_jacobian(w: Vec3) -> Matrix3 {
     let theta = w.norm();
     let k = skew(w);
     let k2 = multiply(&k, &k);
@@ -55,12 +55,14 @@ pub fn exp_apply_derivative(w: Vec3, v: Vec3) -> Matrix3 {
             (theta - theta.sin()) / (t2 * theta),
         )
     };
-    let jr: Matrix3 = std::array::from_fn(|i| {
-        std::array::from_fn(|j| IDENTITY[i][j] - b * k[i][j] + c * k2[i][j])
-    });
-    let r = exp(w);
-    let rs = multiply(&r, &skew(v));
-    let m = multiply(&rs, &jr);
+    std::array::from_fn(|i| std::array::from_fn(|j| IDENTITY[i][j] - b * k[i][j] + c * k2[i][j]))
+}
+
+/// The derivative of `exp(w) v` with respect to `w`, given `r = exp(w)` and `jr =
+/// right_jacobian(w)` (a caller applying one rotation to several vectors computes them once):
+/// `-r skew(v) jr`.
+pub fn apply_derivative(r: &Matrix3, jr: &Matrix3, v: Vec3) -> Matrix3 {
+    let m = multiply(&multiply(r, &skew(v)), jr);
     std::array::from_fn(|i| std::array::from_fn(|j| -m[i][j]))
 }
 
@@ -91,7 +93,7 @@ mod tests {
             Vec3::new(0.4, -1.1, 0.8),
             Vec3::new(2e-5, 1e-5, -3e-5),
         ] {
-            let d = exp_apply_derivative(w, v);
+            let d = apply_derivative(&exp(w), &right_jacobian(w), v);
             let h = 1e-6;
             for j in 0..3 {
                 let mut e = [0.0; 3];
