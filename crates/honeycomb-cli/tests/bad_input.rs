@@ -1091,6 +1091,27 @@ fn lengths_the_pipeline_is_given_are_named_by_their_flags() {
 }
 
 #[test]
+fn even_cells_are_asked_of_walls_across_only() {
+    let dir = TempDir::new("even_cells_are_asked_of_walls_across_only");
+    let surface = saddle_surface(&dir);
+    let out = dir.join("out");
+    for extra in [&["--walls", "uniform"][..], &["--light", "0,0.3,-1"]] {
+        let mut args: Vec<std::ffi::OsString> = vec![
+            "pipeline".into(),
+            surface.clone().into(),
+            "--cells".into(),
+            "100".into(),
+            "--even-cells".into(),
+        ];
+        args.extend(extra.iter().map(Into::into));
+        args.extend(["-o".into(), out.clone().into()]);
+        let shown = ["--even-cells given", "walls across S's normals"];
+        assert_clean_failure(&common::run_bounded(&args, 120), &shown, Some(&out));
+        assert!(!out.exists());
+    }
+}
+
+#[test]
 fn vector_files_with_a_byte_order_mark_are_read_as_the_meshes_are() {
     // "`\u{feff}0` is not a number": the mark was kept in the first line of --axes and
     // --sun-path files, which the mesh readers drop.

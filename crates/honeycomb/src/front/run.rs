@@ -70,6 +70,14 @@ impl PipelineOptions {
                 "shading stands its walls across S, turned across the light",
             ));
         }
+        if self.even_cells && (self.options.walls != Walls::Across || shading.is_some()) {
+            return Err(Error::option(
+                "even_cells",
+                "given",
+                "evens the cells of walls across S's normals; with other walls, or a shading \
+                 device's, the cells are as the walls make them",
+            ));
+        }
         let mut optimize = self.options.optimize_options()?;
         // Shading's depth is given to the finished honeycomb (see `shade`).
         if shading.is_some() {
