@@ -35,6 +35,10 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     pub walls: Option<String>,
+    /// With a design surface: uneven cells of walls across it evened, as `pipeline
+    /// --even-cells`.
+    #[arg(long)]
+    pub even_cells: bool,
     /// With a design surface: cap every hexagon with two planar quads, as `pipeline --quads`;
     /// the page shows their planarity after every edit.
     #[arg(long, value_name = "zigzag|alternating|flattest")]
@@ -104,6 +108,12 @@ pub fn run(args: Args) -> Result<()> {
                 .into(),
         ));
     }
+    if args.even_cells && !surface_input {
+        return Err(Error::Parameter(
+            "--even-cells evens the cells the pipeline makes on a design surface: give one (serve SURFACE.obj --even-cells); a structure directory and the demo have their cells"
+                .into(),
+        ));
+    }
     let variant = variant(&args, surface_input)?;
     let options = Options {
         walls,
@@ -122,7 +132,7 @@ pub fn run(args: Args) -> Result<()> {
                 path.display()
             )))
         }
-        Some(path) => Source::from_path(path, args.cells, options),
+        Some(path) => Source::from_path(path, args.cells, options).with_even_cells(args.even_cells),
     };
     let options = ServeOptions {
         host: if args.public {

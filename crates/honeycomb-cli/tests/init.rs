@@ -3,7 +3,8 @@
 mod common;
 
 use common::{
-    assert_clean_failure, demo, number, read_json, read_written_mesh, run, stderr, TempDir,
+    assert_clean_failure, bowl_file, demo, number, read_json, read_written_mesh, run, stderr,
+    TempDir,
 };
 use honeycomb::mesh::validate_base_mesh;
 use std::path::{Path, PathBuf};
@@ -612,30 +613,6 @@ fn pipeline_checks_its_options_before_writing() {
         args.extend(["-o", dir.to_str().unwrap()]);
         assert_clean_failure(&run(&args), &keywords, Some(&dir));
     }
-}
-
-/// A steep bowl, `z = 1.5 r^2` over the unit square (slopes up to 65 degrees), written as an
-/// OBJ of 60 x 60 squares each cut in two.
-fn bowl_file(tmp: &TempDir) -> PathBuf {
-    let n = 60;
-    let mut text = String::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
-            let z = 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2));
-            text += &format!("v {x} {y} {z}\n");
-        }
-    }
-    let id = |i: usize, j: usize| j * (n + 1) + i + 1;
-    for j in 0..n {
-        for i in 0..n {
-            text += &format!("f {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1));
-            text += &format!("f {} {} {}\n", id(i, j), id(i + 1, j + 1), id(i, j + 1));
-        }
-    }
-    let surface = tmp.join("bowl.obj");
-    std::fs::write(&surface, text).unwrap();
-    surface
 }
 
 /// `pipeline --even-cells` on a steep bowl, `z = 1.5 r^2` over the unit square, where walls

@@ -305,3 +305,25 @@ fn serve_says_what_the_pipeline_changed_unless_quiet() {
         );
     }
 }
+
+/// `serve SURFACE --even-cells` starts from the pipeline's honeycomb with its cells evened
+/// (a steep bowl, whose walls across leave them uneven): the note says so. Without a design
+/// surface the flag is refused by name.
+#[test]
+fn serve_evens_the_cells_of_a_surface_when_asked() {
+    let dir = TempDir::new("serve-even-cells");
+    let bowl = common::bowl_file(&dir);
+    let saves = dir.join("saves");
+    let more = [bowl.as_os_str(), "--saves".as_ref(), saves.as_os_str()];
+    let (mut child, stdout) = serve(&["serve", "--port", "0", "--even-cells"], &more);
+    let mut stderr = child.stderr.take().unwrap();
+    let mut line = String::new();
+    BufReader::new(stdout).read_line(&mut line).unwrap();
+    assert!(line.starts_with("http://"), "{line}");
+    drop(Running(child));
+    let mut said = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut said).unwrap();
+    assert!(said.contains("note: the cells were evened"), "{said}");
+    let demo = run(["serve", "--port", "0", "--even-cells"]);
+    assert_clean_failure(&demo, &["--even-cells", "design surface"], None);
+}

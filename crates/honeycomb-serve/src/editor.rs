@@ -422,10 +422,19 @@ fn remake(
         honeycomb::error::check_positive_length("thickness", t)?;
     }
     let source = match (&current.source, cells) {
-        (Source::Surface { path, options, .. }, Some(cells)) => Source::Surface {
+        (
+            Source::Surface {
+                path,
+                options,
+                even_cells,
+                ..
+            },
+            Some(cells),
+        ) => Source::Surface {
             path: path.clone(),
             cells,
             options: options.clone(),
+            even_cells: *even_cells,
         },
         (Source::Structure(_), _) => {
             return Err(Error::Parameter(

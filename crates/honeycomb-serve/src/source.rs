@@ -22,6 +22,8 @@ pub enum Source {
         path: PathBuf,
         cells: usize,
         options: Box<Options>,
+        /// Uneven cells of walls across S evened (`pipeline --even-cells`).
+        even_cells: bool,
     },
 }
 
@@ -43,8 +45,18 @@ impl Source {
                 path: path.to_path_buf(),
                 cells,
                 options: Box::new(options),
+                even_cells: false,
             }
         }
+    }
+
+    /// This source with a design surface's uneven cells evened (`pipeline --even-cells`);
+    /// other sources have their cells.
+    pub fn with_even_cells(mut self, even: bool) -> Source {
+        if let Source::Surface { even_cells, .. } = &mut self {
+            *even_cells = even;
+        }
+        self
     }
 
     pub fn label(&self) -> String {
@@ -60,10 +72,12 @@ impl Source {
                 path,
                 cells,
                 options,
+                even_cells,
             } => format!(
-                "{} ({cells} cells, walls {}{})",
+                "{} ({cells} cells, walls {}{}{})",
                 path.display(),
                 options.walls.label(),
+                if *even_cells { ", cells evened" } else { "" },
                 match options.variant.name() {
                     Some(name) => format!(", {name}"),
                     None => String::new(),
@@ -99,11 +113,13 @@ impl Source {
                 path,
                 cells,
                 options,
+                even_cells,
             } => {
                 let surface = Surface::new(read_mesh(path)?.mesh)?;
                 // As `honeycomb pipeline` makes it, so that editing starts from a honeycomb.
                 let mut pipeline_options = PipelineOptions::new(*cells);
                 pipeline_options.options = (**options).clone();
+                pipeline_options.even_cells = *even_cells;
                 if thickness.is_some() {
                     pipeline_options.options.thickness = thickness;
                 }

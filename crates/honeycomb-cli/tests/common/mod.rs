@@ -279,3 +279,27 @@ pub fn quad_delta(p: [honeycomb::geometry::Vec3; 4]) -> f64 {
     let mean_edge = (0..4).map(|k| (p[(k + 1) % 4] - p[k]).norm()).sum::<f64>() / 4.0;
     distance / mean_edge
 }
+
+/// A steep bowl, `z = 1.5 r^2` over the unit square (slopes up to 65 degrees), written as an
+/// OBJ of 60 x 60 squares each cut in two.
+pub fn bowl_file(tmp: &TempDir) -> PathBuf {
+    let n = 60;
+    let mut text = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
+            let z = 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2));
+            text += &format!("v {x} {y} {z}\n");
+        }
+    }
+    let id = |i: usize, j: usize| j * (n + 1) + i + 1;
+    for j in 0..n {
+        for i in 0..n {
+            text += &format!("f {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1));
+            text += &format!("f {} {} {}\n", id(i, j), id(i + 1, j + 1), id(i, j + 1));
+        }
+    }
+    let surface = tmp.join("bowl.obj");
+    std::fs::write(&surface, text).unwrap();
+    surface
+}
