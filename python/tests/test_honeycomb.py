@@ -15,10 +15,11 @@ REPO = pathlib.Path(__file__).resolve().parents[2]
 CELLS = 150
 
 
-def saddle(n=25):
-    """The height field z = 0.1 (x^2 - y^2) on [-1, 1]^2, triangulated: (vertices, faces)."""
-    x, y = np.meshgrid(np.linspace(-1, 1, n), np.linspace(-1, 1, n))
-    vertices = np.stack([x.ravel(), y.ravel(), 0.1 * (x**2 - y**2).ravel()], axis=1)
+def height_field(height, n, lo, hi):
+    """The height field z = height(x, y) on [lo, hi]^2, n x n points, triangulated:
+    (vertices, faces)."""
+    x, y = np.meshgrid(np.linspace(lo, hi, n), np.linspace(lo, hi, n))
+    vertices = np.stack([x.ravel(), y.ravel(), height(x, y).ravel()], axis=1)
     faces = []
     for i in range(n - 1):
         for j in range(n - 1):
@@ -26,6 +27,11 @@ def saddle(n=25):
             b, c, d = a + 1, a + n, a + n + 1
             faces += [[a, b, d], [a, d, c]]
     return vertices, np.array(faces, dtype=np.int64)
+
+
+def saddle(n=25):
+    """The height field z = 0.1 (x^2 - y^2) on [-1, 1]^2, triangulated."""
+    return height_field(lambda x, y: 0.1 * (x**2 - y**2), n, -1, 1)
 
 
 def write_obj(path, vertices, faces):
@@ -389,16 +395,7 @@ def test_a_missing_package_is_named(result, tmp_path, monkeypatch, method, packa
 
 def bowl(n=61):
     """The steep bowl z = 1.5 r^2 over [0, 1]^2 (r from its centre), triangulated."""
-    x, y = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n))
-    z = 1.5 * ((x - 0.5) ** 2 + (y - 0.5) ** 2)
-    vertices = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
-    faces = []
-    for i in range(n - 1):
-        for j in range(n - 1):
-            a = i * n + j
-            b, c, d = a + 1, a + n, a + n + 1
-            faces += [[a, b, d], [a, d, c]]
-    return vertices, np.array(faces, dtype=np.int64)
+    return height_field(lambda x, y: 1.5 * ((x - 0.5) ** 2 + (y - 0.5) ** 2), n, 0, 1)
 
 
 def test_even_cells_evens_a_steep_bowl():

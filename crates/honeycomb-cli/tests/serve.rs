@@ -259,6 +259,21 @@ fn serve_json_prints_its_address_as_json() {
     assert!(page.starts_with("HTTP/1.1 200") && page.contains("honeycomb"));
 }
 
+/// What `serve` with `args` on `surface` says on stderr until it is listening (its first
+/// line of stdout is its address), then stopped.
+fn said_on_start(args: &[&str], surface: &Path, saves: &Path) -> String {
+    let more = [surface.as_os_str(), "--saves".as_ref(), saves.as_os_str()];
+    let (mut child, stdout) = serve(args, &more);
+    let mut stderr = child.stderr.take().unwrap();
+    let mut line = String::new();
+    BufReader::new(stdout).read_line(&mut line).unwrap();
+    assert!(line.starts_with("http://"), "{line}");
+    drop(Running(child));
+    let mut said = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut said).unwrap();
+    said
+}
+
 /// A surface's notes (here: uniform walls on a vault that folds over seen along its mean
 /// normal) go to stderr, and not with --quiet.
 #[test]
@@ -288,16 +303,7 @@ fn serve_says_what_the_pipeline_changed_unless_quiet() {
         if quiet {
             args.push("--quiet");
         }
-        let saves = dir.join("saves");
-        let more = [vault.as_os_str(), "--saves".as_ref(), saves.as_os_str()];
-        let (mut child, stdout) = serve(&args, &more);
-        let mut stderr = child.stderr.take().unwrap();
-        let mut line = String::new();
-        BufReader::new(stdout).read_line(&mut line).unwrap();
-        assert!(line.starts_with("http://"), "{line}");
-        drop(Running(child));
-        let mut said = String::new();
-        std::io::Read::read_to_string(&mut stderr, &mut said).unwrap();
+        let said = said_on_start(&args, &vault, &dir.join("saves"));
         assert_eq!(
             said.contains("note: seen along its mean normal"),
             !quiet,
@@ -313,16 +319,11 @@ fn serve_says_what_the_pipeline_changed_unless_quiet() {
 fn serve_evens_the_cells_of_a_surface_when_asked() {
     let dir = TempDir::new("serve-even-cells");
     let bowl = common::bowl_file(&dir);
-    let saves = dir.join("saves");
-    let more = [bowl.as_os_str(), "--saves".as_ref(), saves.as_os_str()];
-    let (mut child, stdout) = serve(&["serve", "--port", "0", "--even-cells"], &more);
-    let mut stderr = child.stderr.take().unwrap();
-    let mut line = String::new();
-    BufReader::new(stdout).read_line(&mut line).unwrap();
-    assert!(line.starts_with("http://"), "{line}");
-    drop(Running(child));
-    let mut said = String::new();
-    std::io::Read::read_to_string(&mut stderr, &mut said).unwrap();
+    let said = said_on_start(
+        &["serve", "--port", "0", "--even-cells"],
+        &bowl,
+        &dir.join("saves"),
+    );
     assert!(said.contains("note: the cells were evened"), "{said}");
     let demo = run(["serve", "--port", "0", "--even-cells"]);
     assert_clean_failure(&demo, &["--even-cells", "design surface"], None);
