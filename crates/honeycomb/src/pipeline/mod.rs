@@ -547,6 +547,32 @@ pub fn solve_base(
     Ok(solved)
 }
 
+impl Solved {
+    /// These walls across S replaced by `again` (the honeycomb solved again from them, its
+    /// measures and a thinning note), `note` saying why: the report is the new honeycomb's,
+    /// with the fit's bookkeeping (walls, iterations in all, cells dropped and trimmed)
+    /// kept.
+    fn solved_again(
+        &mut self,
+        (optimized, measures, thinner): (Optimized, Measures, Option<String>),
+        note: String,
+        seconds: f64,
+    ) {
+        let fitted = &self.report;
+        let mut report = Report::new(&optimized, &measures, seconds);
+        report.walls = fitted.walls;
+        report.iterations_total = fitted.iterations_total;
+        report.dropped_boundary_cells = fitted.dropped_boundary_cells;
+        report.trimmed_boundary_cells = fitted.trimmed_boundary_cells;
+        report.axis_field_iterations = fitted.axis_field_iterations;
+        self.report = report;
+        self.notes.push(note);
+        self.notes.extend(thinner);
+        self.optimized = optimized;
+        self.measures = measures;
+    }
+}
+
 /// Walls across S that are no clean honeycomb: why, the iterations that took, and the result
 /// itself when it still meets the honeycomb tolerances (kept if nothing better comes).
 struct NotClean {
@@ -666,26 +692,16 @@ fn across_or_none(
         })?
     };
     spent += repair_iterations;
-    let (dropped, trimmed) = (across.dropped_cells, across.trimmed_cells);
-    let field_iterations = across.field_iterations;
     let seconds = start.elapsed().as_secs_f64();
     let mut solved = across_solved(across, options, seconds);
     solved.report.iterations_total = spent;
     match repaired {
-        Some((optimized, measures, thinner)) => {
-            solved.report = Report::new(&optimized, &measures, seconds);
-            solved.report.walls = Walls::Across;
-            solved.report.iterations_total = spent;
-            solved.report.dropped_boundary_cells = Some(dropped);
-            solved.report.trimmed_boundary_cells = Some(trimmed);
-            solved.report.axis_field_iterations = Some(field_iterations);
-            solved.notes.push(format!(
+        Some(again) => {
+            let note = format!(
                 "{why}; {repair_iterations} iterations of the guided projection from there \
                  (without fairness, with a minimum edge length) repaired them"
-            ));
-            solved.notes.extend(thinner);
-            solved.optimized = optimized;
-            solved.measures = measures;
+            );
+            solved.solved_again(again, note, seconds);
             Ok(Ok(solved))
         }
         None => {
@@ -934,7 +950,7 @@ fn evened(
     let evened = evened.filter(|(_, m, _)| {
         is_clean(m, options.min_edge) && m.edge_length_cv < before.edge_length_cv
     });
-    let Some((optimized, measures, thinner)) = evened else {
+    let Some(again) = evened else {
         solved.report.iterations_total = total;
         solved.notes.push(format!(
             "the cells are uneven (edge cv {}); evening them in {spent} iterations gave no \
@@ -947,26 +963,13 @@ fn evened(
         "the cells were evened in {spent} iterations: edge cv {} -> {}, the axes {} -> {} \
          degrees from S's normals on average",
         rounded(before.edge_length_cv, 3),
-        rounded(measures.edge_length_cv, 3),
+        rounded(again.1.edge_length_cv, 3),
         lean(before),
-        lean(&measures)
+        lean(&again.1)
     );
-    let fitted = &solved.report;
-    let mut report = Report::new(
-        &optimized,
-        &measures,
-        fitted.seconds + start.elapsed().as_secs_f64(),
-    );
-    report.walls = fitted.walls;
-    report.iterations_total = total;
-    report.dropped_boundary_cells = fitted.dropped_boundary_cells;
-    report.trimmed_boundary_cells = fitted.trimmed_boundary_cells;
-    report.axis_field_iterations = fitted.axis_field_iterations;
-    solved.report = report;
-    solved.notes.push(note);
-    solved.notes.extend(thinner);
-    solved.optimized = optimized;
-    solved.measures = measures;
+    let seconds = solved.report.seconds + start.elapsed().as_secs_f64();
+    solved.report.iterations_total = total;
+    solved.solved_again(again, note, seconds);
     Ok(solved)
 }
 
