@@ -87,7 +87,7 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     let tmp = TempDir::new("pipeline");
     let surface = surface_file(&tmp, "roof");
     let dir = tmp.join("out");
-    pipeline_of_300_cells(&surface, &dir, "--json");
+    pipeline_of(300, &surface, &dir, &["--json"]);
     for file in [
         "initial.obj",
         "init.json",
@@ -106,17 +106,13 @@ fn pipeline_goes_from_a_surface_to_a_honeycomb() {
     assert_eq!(initial.faces, base.faces);
 }
 
-/// `honeycomb pipeline SURFACE --cells 300 FLAG -o DIR`, which must succeed.
-fn pipeline_of_300_cells(surface: &Path, dir: &Path, flag: &str) -> std::process::Output {
-    let out = run([
-        "pipeline",
-        surface.to_str().unwrap(),
-        "--cells",
-        "300",
-        flag,
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
+/// `pipeline SURFACE --cells CELLS FLAGS -o DIR`, which must succeed.
+fn pipeline_of(cells: usize, surface: &Path, dir: &Path, flags: &[&str]) -> std::process::Output {
+    let cells = cells.to_string();
+    let mut args = vec!["pipeline", surface.to_str().unwrap(), "--cells", &cells];
+    args.extend_from_slice(flags);
+    args.extend(["-o", dir.to_str().unwrap()]);
+    let out = run(&args);
     assert!(out.status.success(), "{}", stderr(&out));
     out
 }
@@ -149,7 +145,7 @@ fn pipeline_repairs_an_unwelded_surface_wound_both_ways() {
     let surface = tmp.join("unwelded.obj");
     std::fs::write(&surface, text).unwrap();
     let dir = tmp.join("out");
-    let out = pipeline_of_300_cells(&surface, &dir, "-q");
+    let out = pipeline_of(300, &surface, &dir, &["-q"]);
     let repeated = next - 1 - welded.vertices.len();
     for warning in [
         format!("{repeated} vertices repeat the position of another"),
@@ -624,16 +620,7 @@ fn pipeline_evens_uneven_cells_when_asked() {
     let surface = bowl_file(&tmp);
     let cv = |flag: &str| {
         let dir = tmp.join(flag.trim_start_matches('-'));
-        let out = run([
-            "pipeline",
-            surface.to_str().unwrap(),
-            "--cells",
-            "750",
-            flag,
-            "-o",
-            dir.to_str().unwrap(),
-        ]);
-        assert!(out.status.success(), "{}", stderr(&out));
+        pipeline_of(750, &surface, &dir, &[flag]);
         let report = read_json(&dir, "report.json");
         assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
         (number(&report, "edge_length_cv"), report)
@@ -657,20 +644,8 @@ fn a_capping_out_of_iterations_says_the_honeycomb_is_as_it_was() {
     let tmp = TempDir::new("capping-as-it-was");
     let surface = bowl_file(&tmp);
     let dir = tmp.join("out");
-    let out = run([
-        "pipeline",
-        surface.to_str().unwrap(),
-        "--cells",
-        "300",
-        "--quads",
-        "zigzag",
-        "--iterations",
-        "1",
-        "-q",
-        "-o",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(out.status.success(), "{}", stderr(&out));
+    let flags = ["--quads", "zigzag", "--iterations", "1", "-q"];
+    pipeline_of(300, &surface, &dir, &flags);
     let report = read_json(&dir, "report.json");
     let before = number(&report["capping"], "delta_face_max_before");
     let after = number(&report, "delta_face_max");
