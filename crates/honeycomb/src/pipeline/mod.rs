@@ -53,7 +53,8 @@ pub struct Strategy {
     /// projection of that mesh (else the unclean walls across if they are a honeycomb, or
     /// an error saying why there is none).
     pub guided_fallback: bool,
-    /// Uneven cells of clean walls across S are evened ([`evened`]).
+    /// Uneven cells of clean walls across S are evened ([`evened`]); never for a shading
+    /// device, whose axes are fitted across the light (`PipelineOptions` refuses both).
     pub even_cells: bool,
 }
 
@@ -396,7 +397,7 @@ fn solve_made(
             &options.across,
             progress,
         )? {
-            Ok(solved) if options.even_cells && options.across.targets == AxisTargets::Normals => {
+            Ok(solved) if options.even_cells => {
                 return Ok(Ok(evened(
                     solved,
                     surface,
@@ -552,7 +553,7 @@ impl Solved {
     /// measures and a thinning note), `note` saying why: the report is the new honeycomb's,
     /// with the fit's bookkeeping (walls, iterations in all, cells dropped and trimmed)
     /// kept.
-    fn solved_again(
+    fn replace_by(
         &mut self,
         (optimized, measures, thinner): (Optimized, Measures, Option<String>),
         note: String,
@@ -701,7 +702,7 @@ fn across_or_none(
                 "{why}; {repair_iterations} iterations of the guided projection from there \
                  (without fairness, with a minimum edge length) repaired them"
             );
-            solved.solved_again(again, note, seconds);
+            solved.replace_by(again, note, seconds);
             Ok(Ok(solved))
         }
         None => {
@@ -969,7 +970,7 @@ fn evened(
     );
     let seconds = solved.report.seconds + start.elapsed().as_secs_f64();
     solved.report.iterations_total = total;
-    solved.solved_again(again, note, seconds);
+    solved.replace_by(again, note, seconds);
     Ok(solved)
 }
 
