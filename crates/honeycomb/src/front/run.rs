@@ -164,6 +164,7 @@ pub fn optimize(
                 ShadingTry::Turned(tilt) => (options.walls, shading.targets(tilt)),
                 // `solver_options` prescribe the axes across the light.
                 ShadingTry::Prescribed => (Walls::Free, shading.targets(SHADING_TILTS[0])),
+                ShadingTry::Unturned => unreachable!("a designer's mesh prescribes the axes"),
             };
             let solved = solve_base(
                 base.mesh(),
@@ -536,28 +537,43 @@ fn flatter_grid(
 }
 
 /// The pipeline's shading device (see [`shading_tries`]), each try from a base mesh of its own.
-/// Where walls across give no clean honeycomb, a try ends in the guided projection of the
-/// same grid, which does not depend on the turn: it runs once, and a later try keeps its
-/// walls as they came (or fails, saying why).
+/// A turn whose walls across S are not clean keeps them as they came if they are a honeycomb
+/// (else it fails, saying why). The guided projection from walls orthogonal to S does not
+/// turn them across the light, so it blocks about as much as the cells along S's normals: it
+/// runs last, and only where no turn gave a honeycomb, so that there is one to show.
 fn shading_pipeline(
     surface: &Surface,
-    mut strategy: Strategy,
+    strategy: Strategy,
     shading: &Shading,
     progress: &mut Progress,
 ) -> Result<Outcome> {
     let tries = SHADING_TILTS.map(ShadingTry::Turned);
+    let tries = [&tries[..], &[ShadingTry::Unturned]].concat();
     shading_tries(&tries, progress, |shading_try, progress| {
-        let ShadingTry::Turned(tilt) = shading_try else {
-            unreachable!("the pipeline turns its walls across S")
+        let (walls, targets) = match shading_try {
+            ShadingTry::Turned(tilt) => (strategy.walls, shading.targets(tilt)),
+            ShadingTry::Unturned => (Walls::Free, shading.targets(SHADING_TILTS[0])),
+            ShadingTry::Prescribed => unreachable!("the pipeline prescribes no axes"),
         };
-        let targets = shading.targets(tilt);
-        strategy.across.targets = targets;
-        let made = match run_strategy(surface, &strategy, &mut |step| progress.step(step)) {
+        let tried = Strategy {
+            walls,
+            guided_fallback: false,
+            across: AcrossOptions {
+                targets,
+                ..strategy.across.clone()
+            },
+            ..strategy.clone()
+        };
+        let mut iterations = 0;
+        let made = run_strategy(surface, &tried, &mut |step| {
+            iterations += matches!(step, Step::Iteration(..)) as usize;
+            progress.step(step)
+        });
+        let made = match made {
             Ok(made) => made,
-            Err(Error::Solver(why)) if !strategy.guided_fallback => return Ok(Tried::Failed(why)),
+            Err(Error::Solver(why)) => return Ok(Tried::Failed(why, iterations)),
             Err(e) => return Err(e),
         };
-        strategy.guided_fallback &= made.report.walls != Walls::Free;
         let (optimized, report) = shade(made.optimized, made.report, surface, shading, targets);
         Ok(Tried::Made(Box::new(outcome(
             optimized,
@@ -575,6 +591,9 @@ enum ShadingTry {
     Turned(f64),
     /// The guided projection with the axes prescribed across the light.
     Prescribed,
+    /// The guided projection from walls orthogonal to S, not turned across the light: the
+    /// last resort, made only where no other try made a honeycomb.
+    Unturned,
 }
 
 impl std::fmt::Display for ShadingTry {
@@ -591,6 +610,10 @@ impl std::fmt::Display for ShadingTry {
                     "the guided projection with the axes prescribed across the light"
                 )
             }
+            ShadingTry::Unturned => write!(
+                f,
+                "the guided projection from walls orthogonal to S, not turned across the light"
+            ),
         }
     }
 }
@@ -600,8 +623,8 @@ enum Tried {
     Made(Box<Outcome>),
     /// Nothing: the try would repeat an earlier one.
     Skipped,
-    /// No honeycomb, for this reason.
-    Failed(String),
+    /// No honeycomb, for this reason, after these iterations.
+    Failed(String, usize),
 }
 
 /// A shading device: each of `tries` in turn (`shaded` makes one), until one is a honeycomb
@@ -625,10 +648,15 @@ fn shading_tries(
     // What each try fell short of.
     let (mut short, mut spent) = (Vec::new(), 0);
     for &this in tries {
+        // The last resort only where no other try made a honeycomb.
+        if this == ShadingTry::Unturned && best.is_some() {
+            continue;
+        }
         let out = match shaded(this, progress)? {
             Tried::Made(out) => *out,
             Tried::Skipped => continue,
-            Tried::Failed(why) => {
+            Tried::Failed(why, iterations) => {
+                spent += iterations;
                 short.push((this, why));
                 continue;
             }
@@ -703,7 +731,7 @@ mod tests {
         let err = shading_tries(&tries, &mut Progress::silent(), |t, _| {
             Ok(match t {
                 ShadingTry::Turned(tilt) if tilt < 0.6 => Tried::Skipped,
-                _ => Tried::Failed("a node mirrored".into()),
+                _ => Tried::Failed("a node mirrored".into(), 10),
             })
         })
         .err()
@@ -712,5 +740,69 @@ mod tests {
         assert!(err.contains("at most 45 degrees: a node mirrored"), "{err}");
         assert!(err.contains("at most 60 degrees: a node mirrored"), "{err}");
         assert!(!err.contains("30 degrees"), "{err}");
+    }
+
+    /// The guided projection from walls orthogonal to S runs only where no turn made a
+    /// honeycomb, and the iterations of failed tries are counted.
+    #[test]
+    fn the_unturned_walls_are_the_last_resort() {
+        let tries = [
+            ShadingTry::Turned(SHADING_TILTS[0]),
+            ShadingTry::Turned(SHADING_TILTS[1]),
+            ShadingTry::Unturned,
+        ];
+        let mut asked = Vec::new();
+        let err = shading_tries(&tries, &mut Progress::silent(), |t, _| {
+            asked.push(t);
+            Ok(Tried::Failed(format!("no honeycomb ({t})"), 7))
+        })
+        .err()
+        .expect("no try made anything")
+        .to_string();
+        assert_eq!(
+            asked, tries,
+            "every try is made where none gives a honeycomb"
+        );
+        assert!(
+            err.contains("not turned across the light: no honeycomb"),
+            "{err}"
+        );
+
+        let (base, surface) = crate::generate::lifted_hex_patch(crate::generate::Shape::Dome, 150);
+        let surface = Surface::new(surface).unwrap();
+        let shading = Shading {
+            light: Vec3::new(0.0, 0.0, -1.0),
+            sun_path: Vec::new(),
+            depth: None,
+        };
+        let (mut asked, mut made) = (Vec::new(), 0);
+        let out = shading_tries(&tries, &mut Progress::silent(), |t, _| {
+            asked.push(t);
+            if t != ShadingTry::Turned(SHADING_TILTS[1]) {
+                return Ok(Tried::Failed("a node mirrored".into(), 7));
+            }
+            let solved = solve_base(
+                &base,
+                &surface,
+                Walls::Across,
+                shading.targets(SHADING_TILTS[1]),
+                &OptimizeOptions::default(),
+                &mut |_| {},
+            )?;
+            made = solved.report.iterations_total;
+            let targets = shading.targets(SHADING_TILTS[1]);
+            let (optimized, report) =
+                shade(solved.optimized, solved.report, &surface, &shading, targets);
+            Ok(Tried::Made(Box::new(outcome(
+                optimized,
+                report,
+                base.clone(),
+                None,
+            ))))
+        })
+        .expect("a try made a honeycomb");
+        assert_eq!(asked, tries[..2], "the last resort is not made");
+        assert!(made > 0);
+        assert_eq!(out.report.iterations_total, made + 7);
     }
 }
