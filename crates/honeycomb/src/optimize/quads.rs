@@ -121,6 +121,27 @@ pub(crate) fn cap(
     solver: &SolverOptions,
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Capped> {
+    let walls = (honeycomb, conn, normals);
+    cap_trying(
+        &CLOSENESS_WEIGHTS,
+        walls,
+        surface,
+        options,
+        solver,
+        progress,
+    )
+}
+
+/// [`cap`] of the honeycomb, its connectivity and its wall normals, with the capping tried at
+/// these closeness weights in turn.
+fn cap_trying(
+    closeness_weights: &[f64],
+    (honeycomb, conn, normals): (&Honeycomb, &Connectivity, &[Vec3]),
+    surface: &PolyMesh,
+    options: &QuadOptions,
+    solver: &SolverOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Capped> {
     let frame = Frame::of(&honeycomb.base);
     let normalized = frame.to_normalized(&honeycomb.base);
     let surface = Surface::from_mesh(&frame.to_normalized(surface))?;
@@ -131,14 +152,45 @@ pub(crate) fn cap(
             .map(|v| layout.vertex_at(x, v))
             .collect()
     };
+    // No wall convex before may cross itself after, at the honeycomb's depth: an edge the
+    // capping shortened or turned towards the axes at its ends would. Nor may an edge run
+    // backwards along its wall: its node's walls would then leave the axis in another order,
+    // the node mirrored. And no vertex may stray farther from S than allowed (the normalized
+    // frame's unit is the mean edge length).
+    let wall = |p: &[Vec3], [a, b]: [usize; 2]| {
+        [p[a], p[b], p[b] + axes[b] * depth, p[a] + axes[a] * depth]
+    };
+    let along = |p: &[Vec3], e: usize| {
+        let [a, b] = conn.edges[e];
+        (p[b] - p[a]).dot(normals[e].cross(axes[a] + axes[b]))
+    };
+    let walls_kept = |vertices: &[Vec3]| {
+        (0..conn.num_edges()).all(|e| {
+            let convex = is_convex(wall(vertices, conn.edges[e]))
+                || !is_convex(wall(&normalized.vertices, conn.edges[e]));
+            convex && along(vertices, e) * along(&normalized.vertices, e) > 0.0
+        })
+    };
+    let is_clean = |vertices: &[Vec3]| {
+        let farthest = (vertices.iter())
+            .map(|&p| surface.closest_point(p).distance)
+            .fold(0.0, f64::max);
+        farthest <= MAX_DISTANCE_FROM_S && walls_kept(vertices)
+    };
     let mut iterations = 0;
-    let mut tries = CLOSENESS_WEIGHTS.iter().peekable();
+    let mut tries = closeness_weights.iter().peekable();
     while let Some(&closeness) = tries.next() {
         let problem =
             CappingProblem::build(&normalized, conn, normals, &surface, options, closeness);
         let (mut x, cover) = (problem.x, problem.cover);
         let mut projection =
             GuidedProjection::with_positions(x.len(), problem.families, Some(&problem.positions))?;
+        // The tries share one budget of iterations. A try that has crossed a wall or turned an
+        // edge back once it has spent half of what is left is given up for the next, firmer
+        // one, which then has the rest: vertices come back to S as their closeness firms up,
+        // such walls stay as they are.
+        let left = solver.max_iterations.saturating_sub(iterations);
+        let checkpoint = (tries.peek().is_some()).then(|| left.div_ceil(2));
         // The planarity rows cannot all vanish (the vertices keep to S within a bound), so the
         // solve stops once the quads' planarity has settled.
         let mut state = SolveState::new(solver.eps);
@@ -147,7 +199,7 @@ pub(crate) fn cap(
             [m.delta_face_max, m.delta_face_avg]
         };
         let mut before = planarity(&x);
-        while iterations + state.iterations() < solver.max_iterations {
+        while state.iterations() < left {
             let Some(info) = projection.iterate(&mut x, &mut state, solver)? else {
                 break;
             };
@@ -157,32 +209,14 @@ pub(crate) fn cap(
                 break;
             }
             before = after;
+            if Some(state.iterations()) == checkpoint && !walls_kept(&vertices_of(&x)) {
+                break;
+            }
         }
         let mut solve = projection.report(&x, state, solver);
         iterations += solve.iterations;
         let vertices = vertices_of(&x);
-        // The normalized frame's unit is the mean edge length.
-        let farthest = (vertices.iter())
-            .map(|&p| surface.closest_point(p).distance)
-            .fold(0.0, f64::max);
-        // No wall convex before may cross itself after, at the honeycomb's depth: an edge
-        // the capping shortened or turned towards the axes at its ends would.
-        let wall = |p: &[Vec3], [a, b]: [usize; 2]| {
-            [p[a], p[b], p[b] + axes[b] * depth, p[a] + axes[a] * depth]
-        };
-        // Nor may an edge run backwards along its wall: its node's walls would then leave the
-        // axis in another order, the node mirrored.
-        let along = |p: &[Vec3], e: usize| {
-            let [a, b] = conn.edges[e];
-            (p[b] - p[a]).dot(normals[e].cross(axes[a] + axes[b]))
-        };
-        let kept = (0..conn.num_edges()).all(|e| {
-            let convex = is_convex(wall(&vertices, conn.edges[e]))
-                || !is_convex(wall(&normalized.vertices, conn.edges[e]));
-            convex && along(&vertices, e) * along(&normalized.vertices, e) > 0.0
-        });
-        let clean = farthest <= MAX_DISTANCE_FROM_S && kept;
-        // The tries share one budget of iterations; once it is spent no other is made.
+        let clean = is_clean(&vertices);
         let last = tries.peek().is_none() || iterations >= solver.max_iterations;
         if last || clean {
             solve.iterations = iterations;
@@ -315,6 +349,60 @@ fn best_fit_normal(corners: [Vec3; 4], surface: &Surface) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A loose try that has crossed a wall by the time it has spent half the budget is given
+    /// up, and the firmer try after it caps the honeycomb: walls deep for their cells (three
+    /// edge lengths) on the built-in wave, where the loosest closeness sends the vertices far
+    /// enough along their axes to cross one.
+    #[test]
+    fn a_try_that_crossed_a_wall_leaves_the_budget_to_the_next() {
+        use crate::generate::{design_surface, Shape};
+        use crate::{pipeline, PipelineOptions, Progress};
+        let surface = Surface::new(design_surface(Shape::Wave)).unwrap();
+        let out = pipeline(
+            &surface,
+            &PipelineOptions::new(300),
+            &mut Progress::silent(),
+        )
+        .unwrap();
+        let mut honeycomb = out.honeycomb.clone();
+        honeycomb.thickness = 3.0 * honeycomb.base.mean_edge_length();
+        let conn = crate::mesh::validate_base_mesh(&honeycomb.base).unwrap();
+        let normals = super::super::kept_walls::realized_normals(&honeycomb, &conn);
+        let solver = SolverOptions {
+            max_iterations: 6,
+            ..SolverOptions::default()
+        };
+        let options = QuadOptions::default();
+        let walls = (&honeycomb, &conn, normals.as_slice());
+        let capped = cap_trying(
+            &[1e-3, 3.0],
+            walls,
+            surface.source_mesh(),
+            &options,
+            &solver,
+            &mut |_| {},
+        )
+        .unwrap();
+        assert!(capped.solve.iterations <= 6, "{}", capped.solve.iterations);
+        let unit = honeycomb.base.mean_edge_length();
+        let moved = (capped.vertices.iter().zip(&honeycomb.base.vertices))
+            .map(|(p, q)| (*p - *q).norm() / unit)
+            .fold(0.0, f64::max);
+        assert!(moved > 1e-3, "the honeycomb was left as it was");
+        let farthest = (capped.vertices.iter())
+            .map(|&p| surface.closest_point(p).distance / unit)
+            .fold(0.0, f64::max);
+        assert!(farthest <= MAX_DISTANCE_FROM_S + 1e-9, "{farthest}");
+        let before = face_measures(&honeycomb.base.vertices, &capped.cover.quads);
+        let after = face_measures(&capped.vertices, &capped.cover.quads);
+        assert!(
+            after.delta_face_avg < before.delta_face_avg,
+            "{} -> {}",
+            before.delta_face_avg,
+            after.delta_face_avg
+        );
+    }
 
     #[test]
     fn bad_options_are_named() {
