@@ -67,6 +67,11 @@ class Result:
     @property
     def why(self) -> Optional[str]:
         """Why this is not a honeycomb, in a sentence; None for a honeycomb."""
+    @property
+    def unmet(self) -> Optional[str]:
+        """What a honeycomb falls short of that was asked (a shading device's share of the
+        light), in a sentence; None when all is met, and for a structure read back (its
+        report's ``shading.met`` says) or an edit session's."""
     def export(
         self,
         dir: Union[str, "os.PathLike[str]"],

@@ -165,6 +165,7 @@ pub(crate) fn read(
         outcome: None,
         is_honeycomb,
         why: None,
+        unmet: None,
         measures: to_json(py, &measures)?,
         report: report.unbind(),
     })

@@ -31,6 +31,7 @@ pub(crate) struct HoneycombResult {
     pub(crate) outcome: Option<Outcome>,
     pub(crate) is_honeycomb: bool,
     pub(crate) why: Option<String>,
+    pub(crate) unmet: Option<String>,
     pub(crate) measures: Py<PyAny>,
     pub(crate) report: Py<PyAny>,
 }
@@ -47,6 +48,7 @@ impl HoneycombResult {
             surface: surface.and_then(|s| s.design_mesh().cloned()),
             is_honeycomb: outcome.is_honeycomb(),
             why: outcome.verdict.why.clone(),
+            unmet: outcome.verdict.unmet.clone(),
             measures: to_json(py, &outcome.measures)?,
             report: to_json(py, &outcome.report)?,
             outcome: Some(outcome),
@@ -174,6 +176,14 @@ impl HoneycombResult {
     #[getter]
     fn why(&self) -> Option<String> {
         self.why.clone()
+    }
+
+    /// What a honeycomb falls short of that was asked (a shading device's share of the
+    /// light), in a sentence; None when all is met, and for a structure read back (its
+    /// report's `shading.met` says) or an edit session's.
+    #[getter]
+    fn unmet(&self) -> Option<String> {
+        self.unmet.clone()
     }
 
     /// Writes the structure files into `dir` for a honeycomb, else into `dir.failed`;

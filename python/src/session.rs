@@ -179,6 +179,7 @@ impl PyEditSession {
             surface,
             is_honeycomb,
             why: (!is_honeycomb).then(|| Report::tolerance_summary(&view.measures, false)),
+            unmet: None,
             measures: to_json(py, &view.measures)?,
             arrays: Arrays::of(py, &view.honeycomb)?,
             honeycomb: view.honeycomb,

@@ -406,3 +406,35 @@ def test_even_cells_evens_a_steep_bowl():
     assert fitted.measures["edge_length_cv"] > 0.12
     assert evened.measures["edge_length_cv"] <= 0.1
     assert any("the cells were evened" in n for n in evened.report["notes"])
+
+
+def sun(elevation, azimuth):
+    """The direction sunlight travels from a sun this high (degrees) in this azimuth."""
+    e, a = np.radians(elevation), np.radians(azimuth)
+    return [-np.cos(e) * np.cos(a), -np.cos(e) * np.sin(a), -np.sin(e)]
+
+
+def test_a_shading_device_lets_through_at_most_half_the_light(surface):
+    light = sun(45, 200)
+    out = honeycomb.pipeline(
+        surface, cells=300, variant={"kind": "shading", "light": light}
+    )
+    assert out.is_honeycomb, out.why
+    assert out.unmet is None
+    shading = out.report["shading"]
+    assert shading["met"]
+    assert shading["light"]["after"] <= 0.5 * shading["light"]["before"]
+    assert shading["light"]["before"] > 0.05
+
+
+def test_a_shading_device_that_falls_short_says_so(surface):
+    # Walls a small fraction of an edge deep block almost nothing, turned or not.
+    out = honeycomb.pipeline(
+        surface,
+        cells=300,
+        thickness=0.005,
+        variant={"kind": "shading", "light": sun(45, 200)},
+    )
+    assert out.is_honeycomb, out.why
+    assert not out.report["shading"]["met"]
+    assert "the cells let through" in out.unmet and "light" in out.unmet

@@ -30,6 +30,11 @@ use serde::{Deserialize, Serialize};
 /// assert!(bad.validate().unwrap_err().to_string().contains("eps -1"));
 /// let parallel = Options { variant: Variant::Parallel { depth: Some(0.2), w_parallel: None, w_depth: None }, ..Options::default() };
 /// assert!(parallel.validate().is_ok());
+/// // A shading device needs a light only; the sun path and weight may be left out.
+/// let shading: Options =
+///     serde_json::from_str(r#"{ "variant": { "kind": "shading", "light": [0.5, 0, -0.87] } }"#)
+///         .unwrap();
+/// assert!(matches!(shading.variant, Variant::Shading { ref sun_path, .. } if sun_path.is_empty()));
 /// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -131,6 +136,8 @@ pub enum Variant {
     /// walls block it; `sun_path` adds directions whose light share is reported too.
     Shading {
         light: Vec3,
+        /// More directions (none when left out).
+        #[serde(default)]
         sun_path: Vec<Vec3>,
         /// Weight of the axes across the light (default 0.03).
         w_axes: Option<f64>,
