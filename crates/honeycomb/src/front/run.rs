@@ -696,9 +696,9 @@ fn shading_tries(
     Ok(out)
 }
 
-/// Radians in whole degrees.
+/// Radians in degrees, to a tenth.
 fn degrees(angle: f64) -> f64 {
-    angle.to_degrees().round()
+    (angle.to_degrees() * 10.0).round() / 10.0
 }
 
 /// An outcome judged from its report (whose measures are of the realized meshes).
@@ -739,6 +739,14 @@ mod tests {
         .to_string();
         assert!(err.contains("at most 45 degrees: a node mirrored"), "{err}");
         assert!(err.contains("at most 60 degrees: a node mirrored"), "{err}");
+        assert!(
+            err.contains("at most 37.5 degrees: a node mirrored"),
+            "{err}"
+        );
+        assert!(
+            err.contains("at most 52.5 degrees: a node mirrored"),
+            "{err}"
+        );
         assert!(!err.contains("30 degrees"), "{err}");
     }
 

@@ -8,12 +8,15 @@ use crate::geometry::Vec3;
 /// first so far that the walls lean no more than they stand; then less, where the sheet
 /// cannot follow so far on a doubly curved S; then further, twice, where a high sun's plane
 /// across the light lies beyond the first turn, or S's steep parts turn it further, and the
-/// walls block too little.
-pub const SHADING_TILTS: [f64; 4] = [
+/// walls block too little; then the turns between, where the sheet follows one turn but not
+/// the next and the share let through does not fall with the turn.
+pub const SHADING_TILTS: [f64; 6] = [
     std::f64::consts::FRAC_PI_4,
     std::f64::consts::FRAC_PI_6,
     std::f64::consts::FRAC_PI_3,
     5.0 * std::f64::consts::PI / 12.0,
+    5.0 * std::f64::consts::PI / 24.0,
+    7.0 * std::f64::consts::PI / 24.0,
 ];
 
 /// The axis each node is fitted to, from S's unit normal where it stands.
