@@ -76,6 +76,11 @@ pub struct Args {
     /// With --roofs: uneven cells evened (as `pipeline --even-cells`).
     #[arg(long, requires = "roofs")]
     pub even_cells: bool,
+    /// With --roofs --variants: twelve suns (30, 45 and 60 degrees high from azimuths 0, 90,
+    /// 180 and 270) instead of two, and a line per surface counting those that met half the
+    /// light
+    #[arg(long, requires_all = ["roofs", "variants"])]
+    pub suns: bool,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -100,6 +105,7 @@ pub fn run(args: Args) -> Result<()> {
             walls,
             even_cells: args.even_cells,
             variants: args.variants,
+            suns: args.suns,
             json: args.json,
         });
     }

@@ -2,7 +2,7 @@
 //! on the built-in ones with `--generated`), one row each: how long, how many iterations, how
 //! exact, and how the walls stand on S against parallel axes. With `--variants`, one row per
 //! surface and variant instead: what the variant asks (quad planarity, edge parallelity) and
-//! what it cost (closeness to S, iterations).
+//! what it cost (closeness to S, iterations); with `--suns`, twelve suns in place of two.
 
 use honeycomb::analysis::sun_light;
 use honeycomb::generate::{design_surface, Shape};
@@ -36,6 +36,8 @@ pub struct RoofsArgs {
     pub even_cells: bool,
     /// One row per variant (see [`VARIANTS`]) instead of the plain pipeline.
     pub variants: bool,
+    /// With `variants`: the twelve suns of [`SUNS`] instead of the two of [`VARIANTS`].
+    pub suns: bool,
     pub json: bool,
 }
 
@@ -50,17 +52,44 @@ const VARIANTS: [&str; 6] = [
     "sun 60/45",
 ];
 
+/// `--suns`: suns 30, 45 and 60 degrees high (issue 27 asks 30 to 60) from the four
+/// quarters, as elevation and azimuth in degrees.
+const SUNS: [(u32, u32); 12] = [
+    (30, 0),
+    (30, 90),
+    (30, 180),
+    (30, 270),
+    (45, 0),
+    (45, 90),
+    (45, 180),
+    (45, 270),
+    (60, 0),
+    (60, 90),
+    (60, 180),
+    (60, 270),
+];
+
+/// The variants' row names: [`VARIANTS`], or with `suns` its rows but the suns and then
+/// [`SUNS`].
+fn variant_names(suns: bool) -> Vec<String> {
+    let kept = VARIANTS.iter().filter(|v| !(suns && v.starts_with("sun ")));
+    let twelve = SUNS.iter().filter(|_| suns);
+    (kept.map(|v| v.to_string()))
+        .chain(twelve.map(|(e, a)| format!("sun {e}/{a}")))
+        .collect()
+}
+
 fn variant(name: &str) -> Variant {
-    match name {
-        "sun 30/225" | "sun 60/45" => Variant::Shading {
-            light: if name == "sun 30/225" {
-                sun_light(30.0, 225.0)
-            } else {
-                sun_light(60.0, 45.0)
-            },
+    let sun = name.strip_prefix("sun ").and_then(|s| s.split_once('/'));
+    if let Some((elevation, azimuth)) = sun {
+        let degrees = |d: &str| d.parse::<f64>().expect("a sun row names its angles");
+        return Variant::Shading {
+            light: sun_light(degrees(elevation), degrees(azimuth)),
             sun_path: Vec::new(),
             w_axes: None,
-        },
+        };
+    }
+    match name {
         "parallel" => Variant::Parallel {
             depth: None,
             w_parallel: None,
@@ -87,7 +116,7 @@ struct Row {
     #[serde(skip_serializing_if = "Option::is_none")]
     reason: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    variant: Option<&'static str>,
+    variant: Option<String>,
     #[serde(flatten)]
     figures: Option<Figures>,
     #[serde(flatten)]
@@ -222,15 +251,24 @@ fn run_variants(args: &RoofsArgs, surfaces: &[(String, Source)]) -> Result<()> {
             "close"
         );
     }
+    let names = variant_names(args.suns);
     for &cells in &args.cells {
         for (name, source) in surfaces {
-            for variant in VARIANTS {
+            let (mut suns, mut met) = (0, 0);
+            for variant in &names {
                 if !args.json {
                     print!("{name:<28} {variant:<11} {cells:>6} ");
                     let _ = std::io::Write::flush(&mut std::io::stdout());
                 }
                 let row = bench_one(name, source, cells, args, Some(variant));
                 print_variant_row(&row, args.json)?;
+                if variant.starts_with("sun ") && row.figures.is_some() {
+                    suns += 1;
+                    met += usize::from(row.status == "ok");
+                }
+            }
+            if args.suns && !args.json && suns > 0 {
+                println!("{name:<28} suns met     {cells:>6} {met}/{suns}");
             }
         }
     }
@@ -309,14 +347,14 @@ fn bench_one(
     source: &Source,
     cells: usize,
     args: &RoofsArgs,
-    variant_name: Option<&'static str>,
+    variant_name: Option<&str>,
 ) -> Row {
     let row = |status, reason: Option<String>, figures| Row {
         surface: name.to_string(),
         cells_asked: cells,
         status,
         reason,
-        variant: variant_name,
+        variant: variant_name.map(String::from),
         figures,
         variant_figures: None,
     };

@@ -327,6 +327,58 @@ fn bench_roofs_variants_has_a_row_per_variant() {
     }
 }
 
+/// `bench --roofs DIR --variants --suns` has twelve sun rows (30, 45 and 60 degrees high from
+/// the four quarters) in place of the two, each with its light shares, and the table counts
+/// the suns met per surface; `--suns` alone is refused.
+#[test]
+fn bench_roofs_suns_has_twelve_sun_rows() {
+    let tmp = TempDir::new("walls-bench-suns");
+    let roofs = tmp.join("roofs");
+    std::fs::create_dir_all(&roofs).unwrap();
+    std::fs::copy(surface_file(&tmp, "dome"), roofs.join("dome.obj")).unwrap();
+    let rows = bench_rows(&roofs, &["--variants", "--suns"]);
+    let variants: Vec<&str> = rows.iter().filter_map(|r| r["variant"].as_str()).collect();
+    let mut expected = vec!["zigzag", "alternating", "flattest", "parallel"];
+    let suns: Vec<String> = [30, 45, 60]
+        .iter()
+        .flat_map(|e| [0, 90, 180, 270].map(|a| format!("sun {e}/{a}")))
+        .collect();
+    expected.extend(suns.iter().map(String::as_str));
+    assert_eq!(variants, expected);
+    let mut met = 0;
+    for row in &rows[4..] {
+        let (before, after) = (
+            number(row, "light_share_before"),
+            number(row, "light_share_after"),
+        );
+        assert!(
+            (0.0..=1.0).contains(&before) && (0.0..=1.0).contains(&after),
+            "{row}"
+        );
+        let halved = after <= 0.5 * before || after < 0.005;
+        assert_eq!(row["status"] == "ok", halved, "{row}");
+        met += usize::from(row["status"] == "ok");
+    }
+    let table = run([
+        "bench",
+        "--roofs",
+        roofs.to_str().unwrap(),
+        "--cells",
+        "200",
+        "--variants",
+        "--suns",
+    ]);
+    assert!(table.status.success(), "{}", stderr(&table));
+    let count = stdout(&table)
+        .lines()
+        .find(|l| l.contains("suns met"))
+        .map(|l| l.split_whitespace().last().unwrap().to_string());
+    assert_eq!(count, Some(format!("{met}/12")));
+    let alone = run(["bench", "--roofs", roofs.to_str().unwrap(), "--suns"]);
+    assert_eq!(alone.status.code(), Some(2), "{}", stderr(&alone));
+    assert!(stderr(&alone).contains("--variants"), "{}", stderr(&alone));
+}
+
 /// `pipeline --parallel` writes M and M' on walls across S with their edges parallel, as the
 /// written meshes show; `--walls free` is the paper's simultaneous solve instead.
 #[test]
