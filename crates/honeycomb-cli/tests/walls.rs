@@ -240,15 +240,25 @@ fn bench_rows(roofs: &Path, extra: &[&str]) -> Vec<serde_json::Value> {
         .collect()
 }
 
+/// A folder `roofs` in `tmp` holding the dome as `dome.obj`.
+fn roofs_with_dome(tmp: &TempDir) -> PathBuf {
+    let roofs = tmp.join("roofs");
+    std::fs::create_dir_all(&roofs).unwrap();
+    std::fs::copy(surface_file(tmp, "dome"), roofs.join("dome.obj")).unwrap();
+    roofs
+}
+
+/// The `variant` of each bench row, in order.
+fn variant_names(rows: &[serde_json::Value]) -> Vec<&str> {
+    rows.iter().filter_map(|r| r["variant"].as_str()).collect()
+}
+
 /// `bench --roofs DIR` has a row per surface in DIR (a base mesh skipped with its reason) and
 /// one JSON object per row with `--json`; without the default folder it says so and goes on.
 #[test]
 fn bench_roofs_has_a_row_per_surface() {
     let tmp = TempDir::new("walls-bench");
-    let roofs = tmp.join("roofs");
-    std::fs::create_dir_all(&roofs).unwrap();
-    let dome = surface_file(&tmp, "dome");
-    std::fs::copy(&dome, roofs.join("dome.obj")).unwrap();
+    let roofs = roofs_with_dome(&tmp);
     let src = tmp.join("src");
     demo(&src, &["--vertices", "200"]);
     std::fs::copy(src.join("input_base.obj"), roofs.join("hexes.obj")).unwrap();
@@ -300,11 +310,9 @@ fn bench_roofs_has_a_row_per_surface() {
 #[test]
 fn bench_roofs_variants_has_a_row_per_variant() {
     let tmp = TempDir::new("walls-bench-variants");
-    let roofs = tmp.join("roofs");
-    std::fs::create_dir_all(&roofs).unwrap();
-    std::fs::copy(surface_file(&tmp, "dome"), roofs.join("dome.obj")).unwrap();
+    let roofs = roofs_with_dome(&tmp);
     let rows = bench_rows(&roofs, &["--variants"]);
-    let variants: Vec<&str> = rows.iter().filter_map(|r| r["variant"].as_str()).collect();
+    let variants = variant_names(&rows);
     assert_eq!(
         variants,
         [
@@ -333,11 +341,9 @@ fn bench_roofs_variants_has_a_row_per_variant() {
 #[test]
 fn bench_roofs_suns_has_twelve_sun_rows() {
     let tmp = TempDir::new("walls-bench-suns");
-    let roofs = tmp.join("roofs");
-    std::fs::create_dir_all(&roofs).unwrap();
-    std::fs::copy(surface_file(&tmp, "dome"), roofs.join("dome.obj")).unwrap();
+    let roofs = roofs_with_dome(&tmp);
     let rows = bench_rows(&roofs, &["--variants", "--suns"]);
-    let variants: Vec<&str> = rows.iter().filter_map(|r| r["variant"].as_str()).collect();
+    let variants = variant_names(&rows);
     let mut expected = vec!["zigzag", "alternating", "flattest", "parallel"];
     let suns: Vec<String> = [30, 45, 60]
         .iter()
