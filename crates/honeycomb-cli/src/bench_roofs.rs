@@ -73,10 +73,11 @@ const SUNS: [(u32, u32); 12] = [
 /// [`SUNS`].
 fn variant_names(suns: bool) -> Vec<String> {
     let kept = VARIANTS.iter().filter(|v| !(suns && v.starts_with("sun ")));
-    let twelve = SUNS.iter().filter(|_| suns);
-    (kept.map(|v| v.to_string()))
-        .chain(twelve.map(|(e, a)| format!("sun {e}/{a}")))
-        .collect()
+    let mut names: Vec<String> = kept.map(|v| v.to_string()).collect();
+    if suns {
+        names.extend(SUNS.iter().map(|(e, a)| format!("sun {e}/{a}")));
+    }
+    names
 }
 
 fn variant(name: &str) -> Variant {

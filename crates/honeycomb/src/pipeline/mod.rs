@@ -833,14 +833,7 @@ fn resolved(
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Option<(Optimized, Measures, Option<String>)>> {
     let again = again_from(h, options, REPAIR_ITERATIONS);
-    solved_again(
-        h,
-        surface,
-        model_surface,
-        &again,
-        options.thickness,
-        progress,
-    )
+    solved_again(h, surface, model_surface, &again, progress)
 }
 
 /// Options that solve the honeycomb `h` again by at most `iterations` of the guided projection
@@ -867,13 +860,12 @@ fn again_from(
 }
 
 /// `h` solved with the options `again` (see [`again_from`]), measured, and made thinner
-/// where its walls cross unless `thickness` was asked. `None` when the solve breaks down.
+/// where its walls cross unless their thickness was asked. `None` when the solve breaks down.
 fn solved_again(
     h: &crate::structure::Honeycomb,
     surface: &PolyMesh,
     model_surface: &Surface,
     again: &OptimizeOptions,
-    thickness: Option<f64>,
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Option<(Optimized, Measures, Option<String>)>> {
     let mut optimized = match optimize(&h.base, Some(surface), again, progress) {
@@ -883,7 +875,7 @@ fn solved_again(
     };
     let mut measures = measure(&optimized.honeycomb, model_surface);
     let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
-    let thinner = uncross(h, conn, &mut measures, model_surface, thickness);
+    let thinner = uncross(h, conn, &mut measures, model_surface, again.thickness);
     Ok(Some((optimized, measures, thinner)))
 }
 
@@ -926,22 +918,14 @@ fn evened(
     let (asked, given_up) = (options.solver.cancel.clone(), Cancel::new());
     again.solver.cancel = given_up.clone();
     let mut spent = 0;
-    let evened = solved_again(
-        h,
-        surface,
-        model_surface,
-        &again,
-        options.thickness,
-        &mut |info| {
-            spent += 1;
-            let astray =
-                (EVENING_ON_TRACK.iter()).any(|&(k, r)| spent == k && info.max_residual > r);
-            if asked.is_cancelled() || astray {
-                given_up.cancel();
-            }
-            progress(Step::Iteration("evening the cells", 1, info))
-        },
-    );
+    let evened = solved_again(h, surface, model_surface, &again, &mut |info| {
+        spent += 1;
+        let astray = (EVENING_ON_TRACK.iter()).any(|&(k, r)| spent == k && info.max_residual > r);
+        if asked.is_cancelled() || astray {
+            given_up.cancel();
+        }
+        progress(Step::Iteration("evening the cells", 1, info))
+    });
     let evened = match evened {
         Err(Error::Cancelled) if !asked.is_cancelled() => None,
         evened => evened?,
