@@ -149,7 +149,7 @@ def pipeline(
     boundary: str = "trim",
     align: Optional[str] = None,
     seed: int = 0,
-    even_cells: bool = False,
+    even_cells: Optional[bool] = None,
     progress: Optional[ProgressCallback] = None,
     **options: Any,
 ) -> Result:
@@ -161,8 +161,9 @@ def pipeline(
     "flatten" or "field". ``align``: "boundary", "curvature" (an edge direction along the
     surface's principal directions where they agree), "none" or a polyline file (default:
     "boundary", "curvature" with zigzag or flattest quads). ``even_cells``: where walls across
-    the surface leave cells of uneven size (edge cv 0.12 or more), even them afterwards (as
-    ``honeycomb pipeline --even-cells``; up to 40 more iterations). ``options``: the options of ``honeycomb optimize`` by their field
+    the surface leave cells of uneven size (edge cv 0.12 or more), they are evened afterwards
+    unless this is False (``honeycomb pipeline --no-even-cells``); True asks for it and is
+    refused with other walls or a shading device. ``options``: the options of ``honeycomb optimize`` by their field
     names (``w_fair=0`` for ``--w-fair 0``): iterations, eps, tolerance, thickness, min_edge,
     w_angle, w_cons, w_norm, w_close, w_boundary, w_fair, w_guide, wall_normals, variant.
     A bad one raises ValueError naming it. Releases the GIL; Ctrl-C raises

@@ -20,13 +20,13 @@ use std::path::PathBuf;
 /// about this many cells (or `edge_length` in model units); `method`: "flatten" or "field";
 /// `flatten`: "arap", "lscm" or "project" (default: the pipeline's choice); `boundary`:
 /// "trim" or "keep" the cells S's border cuts; `align`: "boundary", "curvature", "none" or a
-/// polyline file of strokes (default: "boundary", "curvature" for zigzag or flattest quads); `seed` shifts the lattice; `even_cells` evens uneven cells of walls across S (as `honeycomb pipeline`'s flags). Other keyword arguments are the options of `honeycomb
+/// polyline file of strokes (default: "boundary", "curvature" for zigzag or flattest quads); `seed` shifts the lattice; `even_cells`: None (uneven cells of walls across S evened), True (the same, refused with other walls) or False (the cells as fitted), as `honeycomb pipeline`'s flags. Other keyword arguments are the options of `honeycomb
 /// optimize` by their field names (`w_fair` for `--w-fair`). `progress(step: dict)` is
 /// called at every step; returning False stops the work (`honeycomb.Cancelled`).
 #[pyfunction]
 #[pyo3(
-    signature = (surface, cells=1500, walls=None, *, edge_length=None, method="flatten", flatten=None, boundary="trim", align=None, seed=0, even_cells=false, progress=None, **options),
-    text_signature = "(surface, cells=1500, walls='across', *, edge_length=None, method='flatten', flatten=None, boundary='trim', align=None, seed=0, even_cells=False, progress=None, **options)"
+    signature = (surface, cells=1500, walls=None, *, edge_length=None, method="flatten", flatten=None, boundary="trim", align=None, seed=0, even_cells=None, progress=None, **options),
+    text_signature = "(surface, cells=1500, walls='across', *, edge_length=None, method='flatten', flatten=None, boundary='trim', align=None, seed=0, even_cells=None, progress=None, **options)"
 )]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pipeline(
@@ -40,7 +40,7 @@ pub(crate) fn pipeline(
     boundary: &str,
     align: Option<&str>,
     seed: u64,
-    even_cells: bool,
+    even_cells: Option<bool>,
     progress: Option<Py<PyAny>>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<HoneycombResult> {

@@ -398,10 +398,10 @@ def bowl(n=61):
     return height_field(lambda x, y: 1.5 * ((x - 0.5) ** 2 + (y - 0.5) ** 2), n, 0, 1)
 
 
-def test_even_cells_evens_a_steep_bowl():
+def test_uneven_cells_are_evened_by_default():
     surface = bowl()
-    fitted = honeycomb.pipeline(surface, cells=750)
-    evened = honeycomb.pipeline(surface, cells=750, even_cells=True)
+    fitted = honeycomb.pipeline(surface, cells=750, even_cells=False)
+    evened = honeycomb.pipeline(surface, cells=750)
     assert evened.is_honeycomb, evened.why
     assert fitted.measures["edge_length_cv"] > 0.12
     assert evened.measures["edge_length_cv"] <= 0.1

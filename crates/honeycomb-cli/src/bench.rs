@@ -73,9 +73,14 @@ pub struct Args {
         allow_hyphen_values = true
     )]
     pub walls: String,
-    /// With --roofs: uneven cells evened (as `pipeline --even-cells`).
-    #[arg(long, requires = "roofs")]
+    /// With --roofs: uneven cells evened, as `pipeline --even-cells` (the default with walls
+    /// across S).
+    #[arg(long, requires = "roofs", conflicts_with = "no_even_cells")]
     pub even_cells: bool,
+    /// With --roofs: the cells as the walls across S were fitted (as `pipeline
+    /// --no-even-cells`).
+    #[arg(long, requires = "roofs")]
+    pub no_even_cells: bool,
     /// With --roofs --variants: twelve suns (30, 45 and 60 degrees high from azimuths 0, 90,
     /// 180 and 270) instead of two, and a line per surface counting those that met half the
     /// light
@@ -103,7 +108,7 @@ pub fn run(args: Args) -> Result<()> {
             cells: args.cells,
             generated: args.generated,
             walls,
-            even_cells: args.even_cells,
+            even_cells: crate::init::even_cells(args.even_cells, args.no_even_cells),
             variants: args.variants,
             suns: args.suns,
             json: args.json,

@@ -32,8 +32,9 @@ pub struct RoofsArgs {
     pub cells: Vec<usize>,
     pub generated: bool,
     pub walls: Walls,
-    /// Uneven cells evened (`pipeline --even-cells`).
-    pub even_cells: bool,
+    /// Uneven cells evened or not (`pipeline --even-cells`, `--no-even-cells`); `None`: the
+    /// pipeline's default.
+    pub even_cells: Option<bool>,
     /// One row per variant (see [`VARIANTS`]) instead of the plain pipeline.
     pub variants: bool,
     /// With `variants`: the twelve suns of [`SUNS`] instead of the two of [`VARIANTS`].

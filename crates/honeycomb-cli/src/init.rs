@@ -160,14 +160,23 @@ pub struct PipelineArgs {
     #[command(flatten)]
     pub opts: SolveArgs,
     /// Where walls across S leave cells of uneven size (edge-length cv 0.12 or more), even them
-    /// out afterwards: every edge pulled towards the mean length, every wall held where the fit
-    /// put it. The axes lean a little more; up to 40 more iterations, kept only when clean and
-    /// more even (a note says what was traded)
-    #[arg(long)]
+    /// out afterwards (the default with walls across S): a few steps pulling every edge towards
+    /// the mean length while every wall is held where it stands, then the axes fitted and the
+    /// vertices placed again. The axes lean a little more; kept only when clean and more even
+    /// (a note says what was traded). Refused with other walls or a shading device
+    #[arg(long, conflicts_with = "no_even_cells")]
     pub even_cells: bool,
+    /// Keep the cells as the walls across S were fitted, uneven or not
+    #[arg(long)]
+    pub no_even_cells: bool,
     /// Output directory: the structure files, plus initial.obj, init.json and surface.obj.
     #[arg(short, long)]
     pub output: PathBuf,
+}
+
+/// `--even-cells` / `--no-even-cells` as the library takes them: `None` when neither is given.
+pub fn even_cells(even: bool, no_even: bool) -> Option<bool> {
+    (even || no_even).then_some(even)
 }
 
 pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
@@ -188,7 +197,7 @@ pub fn run_pipeline(args: PipelineArgs) -> Result<()> {
         init,
         init_chosen: args.init.flatten.is_some() || args.init.method == Method::Field,
         align_chosen: args.init.align.is_some(),
-        even_cells: args.even_cells,
+        even_cells: even_cells(args.even_cells, args.no_even_cells),
         options: args.opts.options()?,
     };
     let output = args.opts.output();

@@ -36,9 +36,13 @@ pub struct Args {
     )]
     pub walls: Option<String>,
     /// With a design surface: uneven cells of walls across it evened, as `pipeline
-    /// --even-cells`.
-    #[arg(long)]
+    /// --even-cells` (the default with walls across S).
+    #[arg(long, conflicts_with = "no_even_cells")]
     pub even_cells: bool,
+    /// With a design surface: the cells as the walls across it were fitted, as `pipeline
+    /// --no-even-cells`.
+    #[arg(long)]
+    pub no_even_cells: bool,
     /// With a design surface: cap every hexagon with two planar quads, as `pipeline --quads`;
     /// the page shows their planarity after every edit.
     #[arg(long, value_name = "zigzag|alternating|flattest")]
@@ -108,11 +112,16 @@ pub fn run(args: Args) -> Result<()> {
                 .into(),
         ));
     }
-    if args.even_cells && !surface_input {
-        return Err(Error::Parameter(
-            "--even-cells evens the cells the pipeline makes on a design surface: give one (serve SURFACE.obj --even-cells); a structure directory and the demo have their cells"
-                .into(),
-        ));
+    let even_cells = crate::init::even_cells(args.even_cells, args.no_even_cells);
+    if let (Some(even), false) = (even_cells, surface_input) {
+        let flag = if even {
+            "--even-cells"
+        } else {
+            "--no-even-cells"
+        };
+        return Err(Error::Parameter(format!(
+            "{flag} is about the cells the pipeline makes on a design surface: give one (serve SURFACE.obj {flag}); a structure directory and the demo have their cells"
+        )));
     }
     let variant = variant(&args, surface_input)?;
     let options = Options {
@@ -132,7 +141,7 @@ pub fn run(args: Args) -> Result<()> {
                 path.display()
             )))
         }
-        Some(path) => Source::from_path(path, args.cells, options).with_even_cells(args.even_cells),
+        Some(path) => Source::from_path(path, args.cells, options).with_even_cells(even_cells),
     };
     let options = ServeOptions {
         host: if args.public {

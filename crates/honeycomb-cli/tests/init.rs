@@ -611,11 +611,12 @@ fn pipeline_checks_its_options_before_writing() {
     }
 }
 
-/// `pipeline --even-cells` on a steep bowl, `z = 1.5 r^2` over the unit square, where walls
-/// across S leave uneven cells: report.json's edge cv, measured on the written meshes, meets
-/// what a base mesh is asked, and a note says what was traded.
+/// `pipeline` on a steep bowl, `z = 1.5 r^2` over the unit square, where walls across S leave
+/// uneven cells (`--no-even-cells`): by default (and with `--even-cells`) report.json's edge
+/// cv, measured on the written meshes, meets what a base mesh is asked, and a note says what
+/// was traded.
 #[test]
-fn pipeline_evens_uneven_cells_when_asked() {
+fn pipeline_evens_uneven_cells() {
     let tmp = TempDir::new("even_cells");
     let surface = bowl_file(&tmp);
     let cv = |flag: &str| {
@@ -625,8 +626,8 @@ fn pipeline_evens_uneven_cells_when_asked() {
         assert!(number(&report, "omega_max_deg") < 0.01, "{report}");
         (number(&report, "edge_length_cv"), report)
     };
-    let (fitted, _) = cv("-q");
-    let (evened, report) = cv("--even-cells");
+    let (fitted, _) = cv("--no-even-cells");
+    let (evened, report) = cv("-q");
     assert!(fitted > 0.12 && evened <= 0.1, "{fitted} -> {evened}");
     assert!(
         report["notes"]
@@ -634,6 +635,8 @@ fn pipeline_evens_uneven_cells_when_asked() {
             .contains("the cells were evened"),
         "{report}"
     );
+    let (asked, _) = cv("--even-cells");
+    assert_eq!(asked, evened);
 }
 
 /// A capping given one iteration on a steep bowl ends with its vertices still off S (the

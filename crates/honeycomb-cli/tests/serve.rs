@@ -312,19 +312,17 @@ fn serve_says_what_the_pipeline_changed_unless_quiet() {
     }
 }
 
-/// `serve SURFACE --even-cells` starts from the pipeline's honeycomb with its cells evened
-/// (a steep bowl, whose walls across leave them uneven): the note says so. Without a design
-/// surface the flag is refused by name.
+/// `serve SURFACE` starts from the pipeline's honeycomb with its cells evened, as `pipeline`
+/// does by default (a steep bowl, whose walls across leave them uneven): the note says so.
+/// Without a design surface `--even-cells` and `--no-even-cells` are refused by name.
 #[test]
-fn serve_evens_the_cells_of_a_surface_when_asked() {
+fn serve_evens_the_cells_of_a_surface() {
     let dir = TempDir::new("serve-even-cells");
     let bowl = common::bowl_file(&dir);
-    let said = said_on_start(
-        &["serve", "--port", "0", "--even-cells"],
-        &bowl,
-        &dir.join("saves"),
-    );
+    let said = said_on_start(&["serve", "--port", "0"], &bowl, &dir.join("saves"));
     assert!(said.contains("note: the cells were evened"), "{said}");
-    let demo = run(["serve", "--port", "0", "--even-cells"]);
-    assert_clean_failure(&demo, &["--even-cells", "design surface"], None);
+    for flag in ["--even-cells", "--no-even-cells"] {
+        let demo = run(["serve", "--port", "0", flag]);
+        assert_clean_failure(&demo, &[flag, "design surface"], None);
+    }
 }

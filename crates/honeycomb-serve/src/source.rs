@@ -22,8 +22,9 @@ pub enum Source {
         path: PathBuf,
         cells: usize,
         options: Box<Options>,
-        /// Uneven cells of walls across S evened (`pipeline --even-cells`).
-        even_cells: bool,
+        /// Uneven cells of walls across S evened or not (`pipeline --even-cells`,
+        /// `--no-even-cells`); `None`: the pipeline's default.
+        even_cells: Option<bool>,
     },
 }
 
@@ -45,14 +46,14 @@ impl Source {
                 path: path.to_path_buf(),
                 cells,
                 options: Box::new(options),
-                even_cells: false,
+                even_cells: None,
             }
         }
     }
 
-    /// This source with a design surface's uneven cells evened (`pipeline --even-cells`);
-    /// other sources have their cells.
-    pub fn with_even_cells(mut self, even: bool) -> Source {
+    /// This source with a design surface's uneven cells evened or not (`pipeline
+    /// --even-cells`, `--no-even-cells`); other sources have their cells.
+    pub fn with_even_cells(mut self, even: Option<bool>) -> Source {
         if let Source::Surface { even_cells, .. } = &mut self {
             *even_cells = even;
         }
@@ -77,7 +78,11 @@ impl Source {
                 "{} ({cells} cells, walls {}{}{})",
                 path.display(),
                 options.walls.label(),
-                if *even_cells { ", cells evened" } else { "" },
+                match even_cells {
+                    Some(true) => ", cells evened",
+                    Some(false) => ", cells as fitted",
+                    None => "",
+                },
                 match options.variant.name() {
                     Some(name) => format!(", {name}"),
                     None => String::new(),

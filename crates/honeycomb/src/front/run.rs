@@ -33,9 +33,11 @@ pub struct PipelineOptions {
     /// principal directions where they agree (the straight polylines then carry the flattest
     /// quads), and the boundary everywhere else.
     pub align_chosen: bool,
-    /// Walls across S whose cells come out uneven are evened afterwards, the axes leaning a
-    /// little more (see `pipeline::evened`): up to 40 more iterations of the guided projection.
-    pub even_cells: bool,
+    /// Walls across S whose cells come out uneven (edge cv 0.12 or more) are evened afterwards,
+    /// the axes leaning a little more (see `pipeline::evening`). `None`: evened where walls
+    /// stand across S's normals (not for other walls or a shading device); `Some(true)`: asked,
+    /// and refused with other walls; `Some(false)`: the cells as fitted.
+    pub even_cells: Option<bool>,
     pub options: Options,
 }
 
@@ -46,7 +48,7 @@ impl PipelineOptions {
             init: InitOptions::new(CellSize::Cells(cells)),
             init_chosen: false,
             align_chosen: false,
-            even_cells: false,
+            even_cells: None,
             options: Options::default(),
         }
     }
@@ -70,7 +72,8 @@ impl PipelineOptions {
                 "shading stands its walls across S, turned across the light",
             ));
         }
-        if self.even_cells && (self.options.walls != Walls::Across || shading.is_some()) {
+        let across_normals = self.options.walls == Walls::Across && shading.is_none();
+        if self.even_cells == Some(true) && !across_normals {
             return Err(Error::option(
                 "even_cells",
                 "given",
@@ -113,7 +116,7 @@ impl PipelineOptions {
             // Shading sets the axes' targets per try (see `shading_pipeline`).
             across: AcrossOptions::default(),
             guided_fallback: true,
-            even_cells: self.even_cells,
+            even_cells: self.even_cells.unwrap_or(true) && across_normals,
         })
     }
 }

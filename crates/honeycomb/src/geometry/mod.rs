@@ -1,5 +1,6 @@
 //! Geometric primitives shared by every module.
 
+pub(crate) mod differences;
 mod direction;
 pub(crate) mod rotation;
 mod segment;

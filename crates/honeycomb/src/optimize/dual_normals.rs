@@ -7,12 +7,11 @@
 //! of cell points could not express.
 
 use crate::constraints::Layout;
-use crate::error::{Error, Result};
+use crate::error::Result;
+use crate::geometry::differences::integrated;
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::Substitution;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Side};
 use std::collections::VecDeque;
 
 pub struct DualNormals {
@@ -190,9 +189,8 @@ pub fn dual_normals(
     })
 }
 
-/// Least squares `sum |c_l - c_r - n_e|^2` over the edges between two cells (plus a tiny pull
-/// to the origin that fixes the free translation): one sparse Cholesky of the cells' graph
-/// Laplacian, three right-hand sides.
+/// The cell points whose differences best reproduce the normals in `x` over the edges between
+/// two cells (least squares).
 fn fit_cell_points(
     sides: &[[Option<usize>; 2]],
     free: &[bool],
@@ -200,33 +198,14 @@ fn fit_cell_points(
     x: &[f64],
     nf: usize,
 ) -> Result<Vec<Vec3>> {
-    let mut triplets: Vec<Triplet<usize, usize, f64>> =
-        (0..nf).map(|f| Triplet::new(f, f, 1e-9)).collect();
-    let mut rhs = Mat::<f64>::zeros(nf, 3);
-    for (e, s) in sides.iter().enumerate() {
-        let [Some(l), Some(r)] = *s else { continue };
-        if free[e] {
-            continue;
-        }
-        for (a, b, v) in [(l, l, 1.0), (r, r, 1.0), (l, r, -1.0), (r, l, -1.0)] {
-            triplets.push(Triplet::new(a, b, v));
-        }
-        let n = layout.normal_at(x, e).to_array();
-        for k in 0..3 {
-            rhs[(l, k)] += n[k];
-            rhs[(r, k)] -= n[k];
-        }
-    }
-    let fail = |what: &str| Error::Solver(format!("cell points for the wall normals: {what}"));
-    let laplacian = SparseColMat::<usize, f64>::try_new_from_triplets(nf, nf, &triplets)
-        .map_err(|e| fail(&format!("{e:?}")))?;
-    let llt = laplacian
-        .sp_cholesky(Side::Lower)
-        .map_err(|e| fail(&format!("{e:?}")))?;
-    let solution = faer::linalg::solvers::Solve::solve(&llt, &rhs);
-    Ok((0..nf)
-        .map(|f| Vec3::new(solution[(f, 0)], solution[(f, 1)], solution[(f, 2)]))
-        .collect())
+    let differences: Vec<(usize, usize, Vec3)> = (sides.iter().enumerate())
+        .filter(|&(e, _)| !free[e])
+        .filter_map(|(e, s)| match *s {
+            [Some(l), Some(r)] => Some((l, r, layout.normal_at(x, e))),
+            _ => None,
+        })
+        .collect();
+    integrated(nf, &differences)
 }
 
 /// For each cell, the first cell of its group: the cells linked to it through edges whose
@@ -264,6 +243,7 @@ mod tests {
     use super::*;
     use crate::generate::hex_disk;
     use crate::optimize::{node_walls, without_cells};
+    use faer::{Mat, Side};
 
     fn annulus() -> (PolyMesh, Connectivity) {
         let disk = hex_disk(8.0);

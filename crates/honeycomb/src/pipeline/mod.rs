@@ -16,9 +16,12 @@
 //! - [`Walls::Free`]: the guided projection of the ARAP mesh from walls orthogonal to S, the
 //!   axes wherever it leaves them (the paper's algorithm).
 
+mod evening;
 mod walls;
 
 pub use walls::Walls;
+
+use evening::evened;
 
 use crate::error::{rounded, short_vector, Error, Result};
 use crate::init::{flatten_viewed, init, Align, Flattener, InitOptions, Initialized, Method};
@@ -29,7 +32,7 @@ use crate::optimize::{
 };
 use crate::reciprocal::{walls_across, Across, AcrossOptions, AxisTargets, Stage};
 use crate::report::Report;
-use crate::solve::{Cancel, IterationInfo};
+use crate::solve::IterationInfo;
 use crate::structure::{measure, Measures};
 use crate::surface::Surface;
 use std::time::Instant;
@@ -642,6 +645,7 @@ fn across_or_none(
     let mut spent = 0;
     let across = walls_across(
         base,
+        None,
         surface,
         model_surface,
         &across_options,
@@ -879,85 +883,6 @@ fn solved_again(
     Ok(Some((optimized, measures, thinner)))
 }
 
-/// Cells this uneven (edge-length cv) or more are evened ([`evened`]): what a designer's
-/// mesh of one cell size is asked to keep to.
-const UNEVEN_CELLS_CV: f64 = 0.12;
-/// Iterations of the evening at most.
-const EVENING_ITERATIONS: usize = 40;
-/// The evening's weights: every edge towards the mean length, every wall normal held where
-/// the fit put it. Their ratio sets the trade between even cells and axes along S's normals.
-const EVENNESS: f64 = 0.3;
-const HELD_WALLS: f64 = 0.1;
-/// An evening whose largest residual is still above `r` after `k` iterations, for any `(k, r)`
-/// here, is given up: those that end clean are closing in on exact by then, those that do not
-/// keep folding walls back and forth.
-const EVENING_ON_TRACK: [(usize, f64); 2] = [(25, 0.1), (30, 0.01)];
-
-/// A clean honeycomb of walls across S whose cells are uneven (where the fitted sheet curves
-/// while S leans from its axes, docs/walls.md) solved again from where it stands with every
-/// edge pulled towards the mean length and every wall held where it is, both fading: the axes
-/// lean a little more, the cells even out. Kept when that is clean and more even; a note
-/// says what was traded either way.
-fn evened(
-    mut solved: Solved,
-    surface: &PolyMesh,
-    model_surface: &Surface,
-    options: &OptimizeOptions,
-    progress: &mut dyn FnMut(Step),
-) -> Result<Solved> {
-    let before = &solved.measures;
-    if before.edge_length_cv < UNEVEN_CELLS_CV {
-        return Ok(solved);
-    }
-    let start = Instant::now();
-    let h = &solved.optimized.honeycomb;
-    let mut again = again_from(h, options, EVENING_ITERATIONS);
-    again.weights.evenness = EVENNESS;
-    again.weights.held_walls = HELD_WALLS;
-    // A flag of the evening's own, so that it can give up without the caller's Ctrl-C.
-    let (asked, given_up) = (options.solver.cancel.clone(), Cancel::new());
-    again.solver.cancel = given_up.clone();
-    let mut spent = 0;
-    let evened = solved_again(h, surface, model_surface, &again, &mut |info| {
-        spent += 1;
-        let astray = (EVENING_ON_TRACK.iter()).any(|&(k, r)| spent == k && info.max_residual > r);
-        if asked.is_cancelled() || astray {
-            given_up.cancel();
-        }
-        progress(Step::Iteration("evening the cells", 1, info))
-    });
-    let evened = match evened {
-        Err(Error::Cancelled) if !asked.is_cancelled() => None,
-        evened => evened?,
-    };
-    let total = solved.report.iterations_total + spent;
-    let lean = |m: &Measures| rounded(m.axis_normal_deg.mean, 3);
-    let evened = evened.filter(|(_, m, _)| {
-        is_clean(m, options.min_edge) && m.edge_length_cv < before.edge_length_cv
-    });
-    let Some(again) = evened else {
-        solved.report.iterations_total = total;
-        solved.notes.push(format!(
-            "the cells are uneven (edge cv {}); evening them in {spent} iterations gave no \
-             clean honeycomb, so these are the cells as fitted",
-            rounded(before.edge_length_cv, 3)
-        ));
-        return Ok(solved);
-    };
-    let note = format!(
-        "the cells were evened in {spent} iterations: edge cv {} -> {}, the axes {} -> {} \
-         degrees from S's normals on average",
-        rounded(before.edge_length_cv, 3),
-        rounded(again.1.edge_length_cv, 3),
-        lean(before),
-        lean(&again.1)
-    );
-    let seconds = solved.report.seconds + start.elapsed().as_secs_f64();
-    solved.report.iterations_total = total;
-    solved.replace_by(again, note, seconds);
-    Ok(solved)
-}
-
 /// The guided projection with prescribed axes (shading's) made exact: the soft axes hold
 /// the node and wall conditions off by about their weight, so a result short of the
 /// variants' tolerances is solved again without them ([`resolved`]), the axes moving a
@@ -1124,22 +1049,13 @@ fn curved_at_most(surface: &Surface, edge: f64, cells: f64, why: &str) -> Result
 
 /// Walls across S as a solved honeycomb with its report.
 fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Solved {
-    let frame = Frame::of(&across.base);
-    let h = across.honeycomb;
-    let normals = (0..h.edges.len()).map(|e| h.wall_normal(e)).collect();
-    let optimized = Optimized {
-        honeycomb: h,
-        connectivity: across.connectivity,
-        normals,
-        solve: across.solve,
-        frame,
-        prescribed_axes: None,
-        parallel: false,
-        quads: None,
-        quad_cover: None,
-        weights: options.weights.resolved(WallNormals::CellPoints),
-        wall_normals: WallNormals::CellPoints,
-    };
+    let optimized = across_optimized(
+        across.honeycomb,
+        across.connectivity,
+        across.solve,
+        &across.base,
+        options,
+    );
     let mut report = Report::new(&optimized, &across.measures, seconds);
     // The conditions hold by construction once the sheet has unit walls.
     report.converged = across.field_converged;
@@ -1172,6 +1088,33 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
         measures: across.measures,
         report,
         notes,
+    }
+}
+
+/// A honeycomb of the sheet in the guided projection's terms (its wall normals those of its
+/// walls; `base` the mesh it started from, for the frame).
+fn across_optimized(
+    honeycomb: crate::structure::Honeycomb,
+    connectivity: crate::mesh::Connectivity,
+    solve: crate::solve::SolveReport,
+    base: &PolyMesh,
+    options: &OptimizeOptions,
+) -> Optimized {
+    let normals = (0..honeycomb.edges.len())
+        .map(|e| honeycomb.wall_normal(e))
+        .collect();
+    Optimized {
+        honeycomb,
+        connectivity,
+        normals,
+        solve,
+        frame: Frame::of(base),
+        prescribed_axes: None,
+        parallel: false,
+        quads: None,
+        quad_cover: None,
+        weights: options.weights.resolved(WallNormals::CellPoints),
+        wall_normals: WallNormals::CellPoints,
     }
 }
 

@@ -80,10 +80,22 @@ pub enum Stage {
     Placement,
 }
 
+/// Where the sheet starts other than from the base mesh's cells: the walls of a honeycomb
+/// on the base mesh that is not exact (a few steps of the guided projection from one).
+#[derive(Clone, Copy)]
+pub struct Start<'a> {
+    /// One per edge, as seen from its first vertex.
+    pub wall_normals: &'a [Vec3],
+    /// One per vertex; the sheet is fitted to these rather than to `options.targets`.
+    pub axes: &'a [Vec3],
+}
+
 /// A honeycomb on `base` (a valid base mesh on `surface`, both in model units) with walls
-/// across `surface`, measured against `model_surface` (the same surface).
+/// across `surface`, measured against `model_surface` (the same surface); the sheet from the
+/// base mesh's cells, or from `start`.
 pub fn walls_across(
     base: &PolyMesh,
+    start: Option<Start>,
     surface: &PolyMesh,
     model_surface: &Surface,
     options: &AcrossOptions,
@@ -96,9 +108,13 @@ pub fn walls_across(
     let mut mesh = frame.to_normalized(base);
     let mut conn = validate_base_mesh(&mesh)?;
     let mut sheet = Sheet::new(&mesh, &conn)?;
-    let mut points = sheet.initial_points(&mesh, &conn, |p| {
-        options.targets.at(normalized.normal_at(p))
-    });
+    let mut points = match start {
+        Some(start) => sheet.points_of(start.wall_normals)?,
+        None => sheet.initial_points(&mesh, &conn, |p| {
+            options.targets.at(normalized.normal_at(p))
+        }),
+    };
+    let mut given_axes = start.map(|s| s.axes.to_vec());
     let (mut field_iterations, mut dropped_cells) = (0, 0);
     let mut solves: Option<SolveReport> = None;
     let mut chain = |next: SolveReport| {
@@ -114,11 +130,12 @@ pub fn walls_across(
         ..options.placement.clone()
     };
     loop {
-        let targets: Vec<Vec3> = mesh
-            .vertices
-            .iter()
-            .map(|&p| options.targets.at(normalized.normal_at(p)))
-            .collect();
+        let targets: Vec<Vec3> = match &given_axes {
+            Some(axes) => axes.clone(),
+            None => (mesh.vertices.iter())
+                .map(|&p| options.targets.at(normalized.normal_at(p)))
+                .collect(),
+        };
         let edges: Vec<Vec3> = conn
             .edges
             .iter()
@@ -206,6 +223,9 @@ pub fn walls_across(
             &rest_conn,
             &rest_sheet,
         );
+        if let Some(axes) = &mut given_axes {
+            *axes = kept.iter().map(|&v| axes[v]).collect();
+        }
         model_base = without_cells(&model_base, &broken);
         mesh = rest;
         conn = rest_conn;

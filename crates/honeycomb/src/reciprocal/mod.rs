@@ -22,7 +22,7 @@ mod sheet;
 mod targets;
 mod trim;
 
-pub use across::{walls_across, Across, AcrossOptions, Stage};
+pub use across::{walls_across, Across, AcrossOptions, Stage, Start};
 pub use axis_field::{fit_axis_field, AxisFieldOptions};
 pub use placement::{place, PlacementOptions};
 pub use sheet::Sheet;

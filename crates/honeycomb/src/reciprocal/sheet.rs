@@ -157,6 +157,31 @@ impl Sheet {
         (p[b] - p[a]).cross(p[c] - p[a]).normalized()
     }
 
+    /// The points whose differences best reproduce wall normals `normals` (one per edge, as
+    /// seen from its first vertex): cells by least squares over the walls between two cells,
+    /// each ghost from the cells across its walls.
+    pub fn points_of(&self, normals: &[Vec3]) -> Result<Vec<Vec3>> {
+        let inner: Vec<(usize, usize, Vec3)> = (self.sides.iter().zip(normals))
+            .filter(|(s, _)| s[0] < self.cells && s[1] < self.cells)
+            .map(|(&[l, r], &n)| (l, r, n))
+            .collect();
+        let mut points = crate::geometry::differences::integrated(self.cells, &inner)?;
+        let mut sums = vec![(Vec3::ZERO, 0usize); self.ghosts];
+        for (&[l, r], &n) in self.sides.iter().zip(normals) {
+            let guess = match (l >= self.cells, r >= self.cells) {
+                (false, true) => Some((r, points[l] - n)),
+                (true, false) => Some((l, points[r] + n)),
+                _ => None,
+            };
+            if let Some((g, p)) = guess {
+                let s = &mut sums[g - self.cells];
+                *s = (s.0 + p, s.1 + 1);
+            }
+        }
+        points.extend(sums.iter().map(|&(s, k)| s / k.max(1) as f64));
+        Ok(points)
+    }
+
     /// Sheet units per model unit for `mesh`: neighbouring cells' centroids one apart on
     /// average.
     pub fn scale(&self, mesh: &PolyMesh) -> f64 {
@@ -238,5 +263,29 @@ mod tests {
         }
         let corners = (0..mesh.vertices.len()).filter(|&v| conn.valence(v) == 2);
         assert_eq!(sheet.virtual_pairs.len(), corners.count());
+    }
+
+    /// The points of a sheet's wall normals are the sheet's points, moved as one: every cell
+    /// and ghost keeps its place relative to the others, on a folded sheet as on a flat one.
+    #[test]
+    fn the_points_of_wall_normals_are_the_sheet() {
+        let mesh = hex_disk(4.0);
+        let conn = validate_base_mesh(&mesh).unwrap();
+        let sheet = Sheet::new(&mesh, &conn).unwrap();
+        let flat = sheet.initial_points(&mesh, &conn, |_| Vec3::new(0.0, 0.0, 1.0));
+        // Folded along x = 0: each half turned by 20 degrees about the y axis.
+        let (c, s) = (20f64.to_radians().cos(), 20f64.to_radians().sin());
+        let folded: Vec<Vec3> = flat
+            .iter()
+            .map(|p| Vec3::new(p.x * c, p.y, p.x.abs() * s))
+            .collect();
+        let normals: Vec<Vec3> = (0..conn.num_edges())
+            .map(|e| folded[sheet.sides[e][0]] - folded[sheet.sides[e][1]])
+            .collect();
+        let again = sheet.points_of(&normals).unwrap();
+        let shift = again[0] - folded[0];
+        for (k, (&a, &p)) in again.iter().zip(&folded).enumerate() {
+            assert!((a - p - shift).norm() < 1e-6, "point {k}: {a:?} for {p:?}");
+        }
     }
 }

@@ -20,7 +20,7 @@ fn bowl() -> Surface {
     height_field(60, |x, y| 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2)))
 }
 
-fn made(surface: &Surface, even_cells: bool) -> Outcome {
+fn made(surface: &Surface, even_cells: Option<bool>) -> Outcome {
     let options = PipelineOptions {
         even_cells,
         ..PipelineOptions::new(750)
@@ -28,14 +28,14 @@ fn made(surface: &Surface, even_cells: bool) -> Outcome {
     pipeline(surface, &options, &mut Progress::silent()).unwrap()
 }
 
-/// Evened, the bowl's cells meet the evenness asked of a base mesh where the fitted walls
-/// across miss it, and stay a clean honeycomb on S whose axes lean at most half as much as
-/// parallel axes would.
+/// Evened by default, the bowl's cells meet the evenness asked of a base mesh where the fitted
+/// walls across miss it, and stay a clean honeycomb on S whose axes lean at most half as much
+/// as parallel axes would.
 #[test]
 fn uneven_cells_of_walls_across_are_evened() {
     let surface = bowl();
-    let fitted = measure(&made(&surface, false).honeycomb, &surface);
-    let evened = made(&surface, true);
+    let fitted = measure(&made(&surface, Some(false)).honeycomb, &surface);
+    let evened = made(&surface, None);
     let m = measure(&evened.honeycomb, &surface);
     assert!(fitted.edge_length_cv > 0.12, "{}", fitted.edge_length_cv);
     assert!(m.edge_length_cv <= 0.1, "cv {}", m.edge_length_cv);
@@ -60,7 +60,7 @@ fn uneven_cells_of_walls_across_are_evened() {
 #[test]
 fn even_cells_are_left_alone() {
     let surface = height_field(40, |x, y| 0.2 * (x * x - y * y));
-    let (plain, asked) = (made(&surface, false), made(&surface, true));
+    let (plain, asked) = (made(&surface, Some(false)), made(&surface, None));
     assert!(plain.measures.edge_length_cv < 0.12);
     assert_eq!(plain.honeycomb.base.vertices, asked.honeycomb.base.vertices);
     assert_eq!(plain.report.iterations_total, asked.report.iterations_total);

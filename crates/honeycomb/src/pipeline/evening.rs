@@ -1,0 +1,169 @@
+//! Evening the uneven cells of walls across S.
+//!
+//! Where the fitted sheet curves while S leans from its axes the cells change size
+//! (docs/walls.md); letting the axes lean a little more, along the way the sheet curves, evens
+//! them. A few steps of the guided projection find that trade: every edge pulled towards the
+//! mean length, every wall held where it stands. They are stopped long before the nodes are
+//! at 120 degrees again: the sheet of the walls they reached is fitted to unit walls, and
+//! the vertices placed on it close to where the steps put them, which is exact by
+//! construction and costs a fraction of converging the guided projection.
+
+use super::{across_optimized, again_from, is_clean, uncross, Solved, Step};
+use crate::error::{rounded, Error, Result};
+use crate::mesh::PolyMesh;
+use crate::optimize::{optimize, OptimizeOptions, Optimized};
+use crate::reciprocal::{walls_across, AcrossOptions, PlacementOptions, Stage, Start};
+use crate::structure::{Honeycomb, Measures};
+use crate::surface::Surface;
+use std::time::Instant;
+
+/// Cells this uneven (edge-length cv) or more are evened: what a designer's mesh of one cell
+/// size is asked to keep to.
+pub const UNEVEN_CELLS_CV: f64 = 0.12;
+/// Rounds of evening at most, each from the last one's result.
+const ROUNDS: usize = 2;
+/// Steps of the guided projection per round: enough to find the trade, not to make it exact.
+const STEPS: usize = 5;
+/// The steps' weights: every edge towards the mean length, every wall normal held where it
+/// stands. Their ratio sets the trade between even cells and axes along S's normals.
+const EVENNESS: f64 = 0.3;
+const HELD_WALLS: f64 = 0.1;
+/// The placement's pull to where the steps put the vertices (inside and on the boundary): those
+/// positions are the even cells.
+const HELD_VERTICES: f64 = 1.0;
+/// Boundary cells the placement breaks may be dropped in this many rounds, at most this share
+/// of the cells in a round of evening.
+const DROP_ROUNDS: usize = 2;
+const DROPPED_SHARE: f64 = 0.01;
+
+/// `solved` (a clean honeycomb of walls across S) with its cells evened where their edge cv
+/// is [`UNEVEN_CELLS_CV`] or more, in at most [`ROUNDS`] rounds; each round is kept when it is
+/// clean and more even. A note says what was traded, or that nothing was.
+pub fn evened(
+    mut solved: Solved,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    options: &OptimizeOptions,
+    progress: &mut dyn FnMut(Step),
+) -> Result<Solved> {
+    let before = solved.measures.clone();
+    if before.edge_length_cv < UNEVEN_CELLS_CV {
+        return Ok(solved);
+    }
+    let start = Instant::now();
+    let mut spent = 0;
+    let mut best: Option<(Optimized, Measures, Option<String>)> = None;
+    for _ in 0..ROUNDS {
+        let (h, cv) = match &best {
+            Some((o, m, _)) => (&o.honeycomb, m.edge_length_cv),
+            None => (&solved.optimized.honeycomb, before.edge_length_cv),
+        };
+        let Some(next) = round(h, surface, model_surface, options, &mut spent, progress)? else {
+            break;
+        };
+        if !is_clean(&next.1, options.min_edge) || next.1.edge_length_cv >= cv {
+            break;
+        }
+        let even = next.1.edge_length_cv < UNEVEN_CELLS_CV;
+        best = Some(next);
+        if even {
+            break;
+        }
+    }
+    solved.report.iterations_total += spent;
+    let Some(again) = best else {
+        solved.notes.push(format!(
+            "the cells are uneven (edge cv {}); evening them in {spent} iterations gave no \
+             clean honeycomb more even, so these are the cells as fitted",
+            rounded(before.edge_length_cv, 3)
+        ));
+        return Ok(solved);
+    };
+    let lean = |m: &Measures| rounded(m.axis_normal_deg.mean, 3);
+    let note = format!(
+        "the cells were evened in {spent} iterations: edge cv {} -> {}, the axes {} -> {} \
+         degrees from S's normals on average",
+        rounded(before.edge_length_cv, 3),
+        rounded(again.1.edge_length_cv, 3),
+        lean(&before),
+        lean(&again.1)
+    );
+    let seconds = solved.report.seconds + start.elapsed().as_secs_f64();
+    solved.replace_by(again, note, seconds);
+    Ok(solved)
+}
+
+/// One round from `h`: the guided projection's steps, then the sheet of where they got to
+/// fitted and the vertices placed again. `None` where a solve breaks down.
+fn round(
+    h: &Honeycomb,
+    surface: &PolyMesh,
+    model_surface: &Surface,
+    options: &OptimizeOptions,
+    spent: &mut usize,
+    progress: &mut dyn FnMut(Step),
+) -> Result<Option<(Optimized, Measures, Option<String>)>> {
+    let mut steps = again_from(h, options, STEPS);
+    steps.weights.evenness = EVENNESS;
+    steps.weights.held_walls = HELD_WALLS;
+    let stepped = optimize(&h.base, Some(surface), &steps, &mut |info| {
+        *spent += 1;
+        progress(Step::Iteration("evening the cells", 1, info))
+    });
+    let stepped = match stepped {
+        Ok(stepped) => stepped,
+        Err(Error::Solver(_)) => return Ok(None),
+        Err(e) => return Err(e),
+    };
+    let mut across_options = AcrossOptions {
+        thickness: options.thickness,
+        placement: PlacementOptions {
+            evenness: PlacementOptions::default().evenness,
+            anchor: HELD_VERTICES,
+            boundary_anchor: HELD_VERTICES,
+            ..PlacementOptions::default()
+        },
+        max_drops: DROP_ROUNDS,
+        max_dropped_share: DROPPED_SHARE,
+        ..AcrossOptions::default()
+    };
+
+    across_options.field.cancel = options.solver.cancel.clone();
+    across_options.placement.cancel = options.solver.cancel.clone();
+    let h = &stepped.honeycomb;
+    let start = Start {
+        wall_normals: &stepped.normals,
+        axes: &h.axes,
+    };
+    let across = walls_across(
+        &h.base,
+        Some(start),
+        surface,
+        model_surface,
+        &across_options,
+        &mut |stage, info| {
+            *spent += 1;
+            let name = match stage {
+                Stage::AxisField => "evening the cells: fitting the node axes",
+                Stage::Placement => "evening the cells: placing the vertices",
+            };
+            progress(Step::Iteration(name, 1, info))
+        },
+    );
+    let across = match across {
+        Ok(across) => across,
+        Err(Error::Solver(_)) => return Ok(None),
+        Err(e) => return Err(e),
+    };
+    let mut measures = across.measures;
+    let mut optimized = across_optimized(
+        across.honeycomb,
+        across.connectivity,
+        across.solve,
+        &h.base,
+        options,
+    );
+    let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
+    let thinner = uncross(h, conn, &mut measures, model_surface, options.thickness);
+    Ok(Some((optimized, measures, thinner)))
+}
