@@ -8,7 +8,7 @@
 //! the vertices placed on it close to where the steps put them, which is exact by
 //! construction and costs a fraction of converging the guided projection.
 
-use super::{across_optimized, again_from, is_clean, uncross, Solved, Step};
+use super::{across_optimized, again_from, counted, is_clean, uncross, Solved, Step};
 use crate::error::{rounded, Error, Result};
 use crate::mesh::PolyMesh;
 use crate::optimize::{optimize, OptimizeOptions, Optimized};
@@ -52,19 +52,30 @@ pub fn evened(
     }
     let start = Instant::now();
     let mut spent = 0;
-    let mut best: Option<(Optimized, Measures, Option<String>)> = None;
+    let mut best: Option<Round> = None;
     for _ in 0..ROUNDS {
-        let (h, cv) = match &best {
-            Some((o, m, _)) => (&o.honeycomb, m.edge_length_cv),
-            None => (&solved.optimized.honeycomb, before.edge_length_cv),
+        let (h, base, cv) = match &best {
+            Some(r) => (&r.result.0.honeycomb, &r.base, r.result.1.edge_length_cv),
+            None => (
+                &solved.optimized.honeycomb,
+                &solved.base,
+                before.edge_length_cv,
+            ),
         };
-        let Some(next) = round(h, surface, model_surface, options, &mut spent, progress)? else {
+        let from = (h, base);
+        let Some(mut next) = round(from, surface, model_surface, options, &mut spent, progress)?
+        else {
             break;
         };
-        if !is_clean(&next.1, options.min_edge) || next.1.edge_length_cv >= cv {
+        let m = &next.result.1;
+        if !is_clean(m, options.min_edge) || m.edge_length_cv >= cv {
             break;
         }
-        let even = next.1.edge_length_cv < UNEVEN_CELLS_CV;
+        let even = m.edge_length_cv < UNEVEN_CELLS_CV;
+        if let Some(last) = &best {
+            next.dropped += last.dropped;
+            next.trimmed += last.trimmed;
+        }
         best = Some(next);
         if even {
             break;
@@ -80,29 +91,51 @@ pub fn evened(
         return Ok(solved);
     };
     let lean = |m: &Measures| rounded(m.axis_normal_deg.mean, 3);
-    let note = format!(
+    let mut note = format!(
         "the cells were evened in {spent} iterations: edge cv {} -> {}, the axes {} -> {} \
          degrees from S's normals on average",
         rounded(before.edge_length_cv, 3),
-        rounded(again.1.edge_length_cv, 3),
+        rounded(again.result.1.edge_length_cv, 3),
         lean(&before),
-        lean(&again.1)
+        lean(&again.result.1)
     );
+    if again.dropped > 0 {
+        note += &format!(
+            "; {} more dropped or trimmed (initial.obj is the mesh without them)",
+            counted(again.dropped, "boundary cell")
+        );
+    }
     let seconds = solved.report.seconds + start.elapsed().as_secs_f64();
-    solved.replace_by(again, note, seconds);
+    solved.replace_by(again.result, note, seconds);
+    solved.base = again.base;
+    let report = &mut solved.report;
+    let add = |count: &mut Option<usize>, more| *count = Some(count.unwrap_or(0) + more);
+    add(&mut report.dropped_boundary_cells, again.dropped);
+    add(&mut report.trimmed_boundary_cells, again.trimmed);
     Ok(solved)
 }
 
-/// One round from `h`: the guided projection's steps, then the sheet of where they got to
-/// fitted and the vertices placed again. `None` where a solve breaks down.
+/// What a round of evening made: the honeycomb, measured (and its note if its walls were made
+/// thinner), the base mesh it stands on, and the boundary cells it dropped (the trimmed
+/// ones among them) and trimmed.
+struct Round {
+    result: (Optimized, Measures, Option<String>),
+    base: PolyMesh,
+    dropped: usize,
+    trimmed: usize,
+}
+
+/// One round from `h` on `base` (the base mesh without the cells dropped so far): the guided
+/// projection's steps, then the sheet of where they got to fitted and the vertices placed
+/// again. `None` where a solve breaks down.
 fn round(
-    h: &Honeycomb,
+    (h, base): (&Honeycomb, &PolyMesh),
     surface: &PolyMesh,
     model_surface: &Surface,
     options: &OptimizeOptions,
     spent: &mut usize,
     progress: &mut dyn FnMut(Step),
-) -> Result<Option<(Optimized, Measures, Option<String>)>> {
+) -> Result<Option<Round>> {
     let mut steps = again_from(h, options, STEPS);
     steps.weights.evenness = EVENNESS;
     steps.weights.held_walls = HELD_WALLS;
@@ -118,7 +151,6 @@ fn round(
     let mut across_options = AcrossOptions {
         thickness: options.thickness,
         placement: PlacementOptions {
-            evenness: PlacementOptions::default().evenness,
             anchor: HELD_VERTICES,
             boundary_anchor: HELD_VERTICES,
             ..PlacementOptions::default()
@@ -127,16 +159,16 @@ fn round(
         max_dropped_share: DROPPED_SHARE,
         ..AcrossOptions::default()
     };
-
     across_options.field.cancel = options.solver.cancel.clone();
     across_options.placement.cancel = options.solver.cancel.clone();
-    let h = &stepped.honeycomb;
+    let stepped_h = &stepped.honeycomb;
     let start = Start {
+        vertices: &stepped_h.base.vertices,
         wall_normals: &stepped.normals,
-        axes: &h.axes,
+        axes: &stepped_h.axes,
     };
     let across = walls_across(
-        &h.base,
+        base,
         Some(start),
         surface,
         model_surface,
@@ -160,10 +192,15 @@ fn round(
         across.honeycomb,
         across.connectivity,
         across.solve,
-        &h.base,
+        &across.base,
         options,
     );
     let (h, conn) = (&mut optimized.honeycomb, &optimized.connectivity);
     let thinner = uncross(h, conn, &mut measures, model_surface, options.thickness);
-    Ok(Some((optimized, measures, thinner)))
+    Ok(Some(Round {
+        result: (optimized, measures, thinner),
+        base: across.base,
+        dropped: across.dropped_cells,
+        trimmed: across.trimmed_cells,
+    }))
 }

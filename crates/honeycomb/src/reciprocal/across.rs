@@ -80,10 +80,12 @@ pub enum Stage {
     Placement,
 }
 
-/// Where the sheet starts other than from the base mesh's cells: the walls of a honeycomb
-/// on the base mesh that is not exact (a few steps of the guided projection from one).
+/// Where the sheet starts other than from the base mesh's cells: a honeycomb on the base
+/// mesh that is not exact (a few steps of the guided projection from one), model units.
 #[derive(Clone, Copy)]
 pub struct Start<'a> {
+    /// Its vertices, where the placement starts and which it stays close to.
+    pub vertices: &'a [Vec3],
     /// One per edge, as seen from its first vertex.
     pub wall_normals: &'a [Vec3],
     /// One per vertex; the sheet is fitted to these rather than to `options.targets`.
@@ -92,7 +94,7 @@ pub struct Start<'a> {
 
 /// A honeycomb on `base` (a valid base mesh on `surface`, both in model units) with walls
 /// across `surface`, measured against `model_surface` (the same surface); the sheet from the
-/// base mesh's cells, or from `start`.
+/// base mesh's cells, or from `start` (on the base mesh's faces).
 pub fn walls_across(
     base: &PolyMesh,
     start: Option<Start>,
@@ -105,7 +107,12 @@ pub fn walls_across(
     let normalized = Surface::from_mesh(&frame.to_normalized(surface))?;
     let allowed = (options.max_dropped_share * base.faces.len() as f64).floor() as usize;
     let mut model_base = base.clone();
-    let mut mesh = frame.to_normalized(base);
+    let mut mesh = match start {
+        Some(start) => {
+            frame.to_normalized(&PolyMesh::new(start.vertices.to_vec(), base.faces.clone()))
+        }
+        None => frame.to_normalized(base),
+    };
     let mut conn = validate_base_mesh(&mesh)?;
     let mut sheet = Sheet::new(&mesh, &conn)?;
     let mut points = match start {
