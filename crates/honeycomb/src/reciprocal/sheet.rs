@@ -165,12 +165,18 @@ impl Sheet {
             .filter(|(s, _)| s[0] < self.cells && s[1] < self.cells)
             .map(|(&[l, r], &n)| (l, r, n))
             .collect();
-        let mut points = crate::geometry::differences::integrated(self.cells, &inner)?;
+        let cells = crate::geometry::differences::integrated(self.cells, &inner)?;
+        Ok(self.with_ghosts(cells, |e| normals[e]))
+    }
+
+    /// The points of `cells` followed by each ghost's: the mean over its walls of the cell
+    /// inside across the wall, one `wall_normal(e)` away.
+    fn with_ghosts(&self, mut points: Vec<Vec3>, wall_normal: impl Fn(usize) -> Vec3) -> Vec<Vec3> {
         let mut sums = vec![(Vec3::ZERO, 0usize); self.ghosts];
-        for (&[l, r], &n) in self.sides.iter().zip(normals) {
+        for (e, &[l, r]) in self.sides.iter().enumerate() {
             let guess = match (l >= self.cells, r >= self.cells) {
-                (false, true) => Some((r, points[l] - n)),
-                (true, false) => Some((l, points[r] + n)),
+                (false, true) => Some((r, points[l] - wall_normal(e))),
+                (true, false) => Some((l, points[r] + wall_normal(e))),
                 _ => None,
             };
             if let Some((g, p)) = guess {
@@ -179,7 +185,7 @@ impl Sheet {
             }
         }
         points.extend(sums.iter().map(|&(s, k)| s / k.max(1) as f64));
-        Ok(points)
+        points
     }
 
     /// Sheet units per model unit for `mesh`: neighbouring cells' centroids one apart on
@@ -210,24 +216,12 @@ impl Sheet {
     ) -> Vec<Vec3> {
         let centroids: Vec<Vec3> = (0..self.cells).map(|f| mesh.face_centroid(f)).collect();
         let scale = self.scale(mesh);
-        let mut points: Vec<Vec3> = centroids.iter().map(|&c| c * scale).collect();
-        let mut sums = vec![(Vec3::ZERO, 0usize); self.ghosts];
-        for (e, &[l, r]) in self.sides.iter().enumerate() {
+        let points: Vec<Vec3> = centroids.iter().map(|&c| c * scale).collect();
+        self.with_ghosts(points, |e| {
             let [a, b] = conn.edges[e];
             let (pa, pb) = (mesh.vertices[a], mesh.vertices[b]);
-            let n = (pa - pb).normalized().cross(normal_at((pa + pb) * 0.5));
-            let guess = match (l >= self.cells, r >= self.cells) {
-                (false, true) => Some((r, points[l] - n)),
-                (true, false) => Some((l, points[r] + n)),
-                _ => None,
-            };
-            if let Some((g, p)) = guess {
-                let s = &mut sums[g - self.cells];
-                *s = (s.0 + p, s.1 + 1);
-            }
-        }
-        points.extend(sums.iter().map(|&(s, k)| s / k.max(1) as f64));
-        points
+            (pa - pb).normalized().cross(normal_at((pa + pb) * 0.5))
+        })
     }
 }
 
