@@ -23,7 +23,10 @@ const UNEVEN_CELLS_CV: f64 = 0.12;
 /// Rounds of evening at most, each from the last one's result.
 const ROUNDS: usize = 2;
 /// Steps of the guided projection per round: enough to find the trade, not to make it exact.
+/// A round that is not clean is tried again, once, with fewer: a gentler trade, whose
+/// walls are less likely to cross.
 const STEPS: usize = 5;
+const GENTLE_STEPS: usize = 2;
 /// The steps' weights: every edge towards the mean length, every wall normal held where it
 /// stands. Their ratio sets the trade between even cells and axes along S's normals.
 const EVENNESS: f64 = 0.3;
@@ -38,7 +41,7 @@ const DROPPED_SHARE: f64 = 0.01;
 
 /// `solved` (a clean honeycomb of walls across S) with its cells evened where their edge cv
 /// is [`UNEVEN_CELLS_CV`] or more, in at most [`ROUNDS`] rounds; each round is kept when it is
-/// clean and more even. A note says what was traded, or that nothing was.
+/// clean and more even (else tried again once with [`GENTLE_STEPS`]). A note says what was traded, or that nothing was.
 pub fn evened(
     mut solved: Solved,
     surface: &PolyMesh,
@@ -53,7 +56,8 @@ pub fn evened(
     let start = Instant::now();
     let mut spent = 0;
     let mut best: Option<Round> = None;
-    for _ in 0..ROUNDS {
+    let (mut rounds, mut steps) = (0, STEPS);
+    while rounds < ROUNDS {
         let (h, base, cv) = match &best {
             Some(r) => (&r.result.0.honeycomb, &r.base, r.result.1.edge_length_cv),
             None => (
@@ -62,15 +66,21 @@ pub fn evened(
                 before.edge_length_cv,
             ),
         };
-        let from = (h, base);
-        let Some(mut next) = round(from, surface, model_surface, options, &mut spent, progress)?
-        else {
-            break;
+        let from = (h, base, steps);
+        let next = round(from, surface, model_surface, options, &mut spent, progress)?;
+        let better = |r: &Round| {
+            let m = &r.result.1;
+            is_clean(m, options.min_edge) && m.edge_length_cv < cv
         };
+        let Some(mut next) = next.filter(better) else {
+            if steps == GENTLE_STEPS {
+                break;
+            }
+            steps = GENTLE_STEPS;
+            continue;
+        };
+        rounds += 1;
         let m = &next.result.1;
-        if !is_clean(m, options.min_edge) || m.edge_length_cv >= cv {
-            break;
-        }
         let even = m.edge_length_cv < UNEVEN_CELLS_CV;
         if let Some(last) = &best {
             next.dropped += last.dropped;
@@ -125,21 +135,21 @@ struct Round {
     trimmed: usize,
 }
 
-/// One round from `h` on `base` (the base mesh without the cells dropped so far): the guided
-/// projection's steps, then the sheet of where they got to fitted and the vertices placed
+/// One round from `h` on `base` (the base mesh without the cells dropped so far): `steps` of
+/// the guided projection, then the sheet of where they got to fitted and the vertices placed
 /// again. `None` where a solve breaks down.
 fn round(
-    (h, base): (&Honeycomb, &PolyMesh),
+    (h, base, steps): (&Honeycomb, &PolyMesh, usize),
     surface: &PolyMesh,
     model_surface: &Surface,
     options: &OptimizeOptions,
     spent: &mut usize,
     progress: &mut dyn FnMut(Step),
 ) -> Result<Option<Round>> {
-    let mut steps = again_from(h, options, STEPS);
-    steps.weights.evenness = EVENNESS;
-    steps.weights.held_walls = HELD_WALLS;
-    let stepped = optimize(&h.base, Some(surface), &steps, &mut |info| {
+    let mut stepping = again_from(h, options, steps);
+    stepping.weights.evenness = EVENNESS;
+    stepping.weights.held_walls = HELD_WALLS;
+    let stepped = optimize(&h.base, Some(surface), &stepping, &mut |info| {
         *spent += 1;
         progress(Step::Iteration("evening the cells", 1, info))
     });
