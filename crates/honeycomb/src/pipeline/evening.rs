@@ -111,8 +111,8 @@ pub fn evened(
     );
     if again.dropped > 0 {
         note += &format!(
-            "; {} more dropped or trimmed (initial.obj is the mesh without them)",
-            counted(again.dropped, "boundary cell")
+            "; {} dropped or trimmed (initial.obj is the mesh without them)",
+            counted(again.dropped, "boundary cell").replacen(' ', " more ", 1)
         );
     }
     let seconds = solved.report.seconds + start.elapsed().as_secs_f64();
