@@ -41,7 +41,8 @@ const DROPPED_SHARE: f64 = 0.01;
 
 /// `solved` (a clean honeycomb of walls across S) with its cells evened where their edge cv
 /// is [`UNEVEN_CELLS_CV`] or more, in at most [`ROUNDS`] rounds; each round is kept when it is
-/// clean and more even (else tried again once with [`GENTLE_STEPS`]). A note says what was traded, or that nothing was.
+/// clean and more even (else tried again once with [`GENTLE_STEPS`]). A note says what was
+/// traded, or that nothing was.
 pub fn evened(
     mut solved: Solved,
     surface: &PolyMesh,
@@ -137,7 +138,8 @@ struct Round {
 
 /// One round from `h` on `base` (the base mesh without the cells dropped so far): `steps` of
 /// the guided projection, then the sheet of where they got to fitted and the vertices placed
-/// again. `None` where a solve breaks down.
+/// again. `None` where a solve breaks down or the steps leave no valid base mesh (the cells
+/// then stay as they were).
 fn round(
     (h, base, steps): (&Honeycomb, &PolyMesh, usize),
     surface: &PolyMesh,
@@ -155,8 +157,8 @@ fn round(
     });
     let stepped = match stepped {
         Ok(stepped) => stepped,
-        Err(Error::Solver(_)) => return Ok(None),
-        Err(e) => return Err(e),
+        Err(Error::Cancelled) => return Err(Error::Cancelled),
+        Err(_) => return Ok(None),
     };
     let mut across_options = AcrossOptions {
         thickness: options.thickness,
@@ -194,8 +196,8 @@ fn round(
     );
     let across = match across {
         Ok(across) => across,
-        Err(Error::Solver(_)) => return Ok(None),
-        Err(e) => return Err(e),
+        Err(Error::Cancelled) => return Err(Error::Cancelled),
+        Err(_) => return Ok(None),
     };
     let mut measures = across.measures;
     let mut optimized = across_optimized(
