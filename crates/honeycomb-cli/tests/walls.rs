@@ -283,8 +283,8 @@ fn bench_roofs_has_a_row_per_surface() {
     let hexes = rows.iter().find(|r| r["surface"] == "hexes.obj").unwrap();
     assert_eq!(hexes["status"], "skipped", "{hexes}");
     // The dome's cells are even already: evening (the default) leaves its row as it was.
-    let evened = bench_rows(&roofs, &["--no-even-cells"]);
-    let evened = evened.iter().find(|r| r["surface"] == "dome.obj").unwrap();
+    let fitted = bench_rows(&roofs, &["--no-even-cells"]);
+    let fitted = fitted.iter().find(|r| r["surface"] == "dome.obj").unwrap();
     assert!(number(dome_row, "edge_length_cv") < 0.12, "{dome_row}");
     for key in [
         "cells",
@@ -292,7 +292,7 @@ fn bench_roofs_has_a_row_per_surface() {
         "edge_length_cv",
         "axis_normal_mean_deg",
     ] {
-        assert_eq!(evened[key], dome_row[key], "{key}");
+        assert_eq!(fitted[key], dome_row[key], "{key}");
     }
     let table = run([
         "bench",

@@ -20,10 +20,11 @@ fn bowl() -> Surface {
     height_field(60, |x, y| 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2)))
 }
 
-fn made(surface: &Surface, even_cells: Option<bool>) -> Outcome {
+/// The pipeline's honeycomb of about `cells` cells on `surface`.
+fn made(surface: &Surface, cells: usize, even_cells: Option<bool>) -> Outcome {
     let options = PipelineOptions {
         even_cells,
-        ..PipelineOptions::new(750)
+        ..PipelineOptions::new(cells)
     };
     pipeline(surface, &options, &mut Progress::silent()).unwrap()
 }
@@ -34,8 +35,8 @@ fn made(surface: &Surface, even_cells: Option<bool>) -> Outcome {
 #[test]
 fn uneven_cells_of_walls_across_are_evened() {
     let surface = bowl();
-    let fitted = measure(&made(&surface, Some(false)).honeycomb, &surface);
-    let evened = made(&surface, None);
+    let fitted = measure(&made(&surface, 750, Some(false)).honeycomb, &surface);
+    let evened = made(&surface, 750, None);
     let m = measure(&evened.honeycomb, &surface);
     assert!(fitted.edge_length_cv > 0.12, "{}", fitted.edge_length_cv);
     assert!(m.edge_length_cv <= 0.1, "cv {}", m.edge_length_cv);
@@ -60,7 +61,7 @@ fn uneven_cells_of_walls_across_are_evened() {
 #[test]
 fn even_cells_are_left_alone() {
     let surface = height_field(40, |x, y| 0.2 * (x * x - y * y));
-    let (plain, asked) = (made(&surface, Some(false)), made(&surface, None));
+    let (plain, asked) = (made(&surface, 750, Some(false)), made(&surface, 750, None));
     assert!(plain.measures.edge_length_cv < 0.12);
     assert_eq!(plain.honeycomb.base.vertices, asked.honeycomb.base.vertices);
     assert_eq!(plain.report.iterations_total, asked.report.iterations_total);
@@ -72,12 +73,10 @@ fn even_cells_are_left_alone() {
 #[test]
 fn an_evening_that_crosses_walls_is_tried_again_gentler() {
     let surface = height_field(60, |x, y| 3.0 * ((x - 0.5).powi(2) + (y - 0.5).powi(2)));
-    let options = |even_cells| PipelineOptions {
-        even_cells,
-        ..PipelineOptions::new(1500)
-    };
-    let run = |even| pipeline(&surface, &options(even), &mut Progress::silent()).unwrap();
-    let (fitted, evened) = (run(Some(false)), run(None));
+    let (fitted, evened) = (
+        made(&surface, 1500, Some(false)),
+        made(&surface, 1500, None),
+    );
     let m = measure(&evened.honeycomb, &surface);
     assert!(m.omega_max_deg < 0.01 && m.delta_max < 1e-6, "{m:?}");
     assert_eq!(m.nonconvex_walls, 0);
