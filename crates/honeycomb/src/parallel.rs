@@ -34,6 +34,18 @@ pub fn both_telling<A: Send, B>(
     })
 }
 
+/// Runs `f(first, part)` on the two halves of `items` (`first` the index of the part's first
+/// item), on two threads from `from` items on, else on this one.
+pub fn in_halves<T: Send>(items: &mut [T], from: usize, f: impl Fn(usize, &mut [T]) + Sync) {
+    if items.len() < from {
+        f(0, items);
+        return;
+    }
+    let mid = items.len() / 2;
+    let (low, high) = items.split_at_mut(mid);
+    both(|| f(0, low), || f(mid, high));
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -50,6 +62,20 @@ mod tests {
         assert_eq!(b.0, here, "the second runs here");
         let (_, _, apart) = both_telling(|| 1, || 2);
         assert!(apart, "and says so");
+    }
+
+    #[test]
+    fn each_half_is_done_once_with_its_first_index() {
+        for (len, from) in [(7, 100), (7, 2), (1, 1), (0, 0)] {
+            let mut items: Vec<(usize, usize)> = vec![(0, 0); len];
+            in_halves(&mut items, from, |first, part| {
+                for (k, item) in part.iter_mut().enumerate() {
+                    *item = (item.0 + 1, first + k);
+                }
+            });
+            let want: Vec<(usize, usize)> = (0..len).map(|i| (1, i)).collect();
+            assert_eq!(items, want, "{len} items from {from}");
+        }
     }
 
     #[test]

@@ -8,14 +8,10 @@
 
 use super::layout::{put, triple, Layout};
 use crate::geometry::Vec3;
-use crate::parallel::both;
+use crate::parallel::in_halves;
 use crate::solve::Constraint;
-use crate::surface::Surface;
+use crate::surface::{Surface, PARALLEL_QUERIES_FROM};
 use std::ops::Deref;
-
-/// From this many vertices on, closest points are found on two threads (a query takes about a
-/// microsecond, starting a thread some tens).
-const PARALLEL_FROM: usize = 1000;
 
 /// `S` is how the family holds S: borrowed for one solve, shared (`Arc`) by a session that
 /// owns its data.
@@ -58,7 +54,7 @@ impl<S: Deref<Target = Surface> + Send + Sync> Constraint for Closeness<S> {
     fn refresh(&mut self, x: &[f64]) {
         let (layout, surface) = (self.layout, &*self.surface);
         // Vertices `first..` of `feet`.
-        let find = |feet: &mut [(Vec3, Vec3, Vec3)], first: usize| {
+        let find = |first: usize, feet: &mut [(Vec3, Vec3, Vec3)]| {
             for (k, foot) in feet.iter_mut().enumerate() {
                 let q = layout.vertex_at(x, first + k);
                 let c = surface.closest_point(q);
@@ -72,13 +68,7 @@ impl<S: Deref<Target = Surface> + Send + Sync> Constraint for Closeness<S> {
                 *foot = (c.point, c.normal, out);
             }
         };
-        if self.foot.len() < PARALLEL_FROM {
-            find(&mut self.foot, 0);
-        } else {
-            let mid = self.foot.len() / 2;
-            let (low, high) = self.foot.split_at_mut(mid);
-            both(|| find(low, 0), || find(high, mid));
-        }
+        in_halves(&mut self.foot, PARALLEL_QUERIES_FROM, find);
     }
     fn evaluate(&self, x: &[f64], res: &mut [f64], jac: &mut [f64]) {
         for (v, &(p, n, out)) in self.foot.iter().enumerate() {

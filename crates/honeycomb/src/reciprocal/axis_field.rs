@@ -103,6 +103,15 @@ pub fn fit_axis_field(
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<AxisField> {
     let (np, nt) = (points.len(), sheet.triangles.len());
+    let pairs = sheet.unit_pairs();
+    let mut y: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+    if max_gap(&y, &pairs) < options.tolerance {
+        // A sheet already fitted (the rest of one whose broken cells were dropped).
+        return Ok(AxisField {
+            points: points.to_vec(),
+            solve: SolveReport::untouched(3 * (np + nt)),
+        });
+    }
     let sides: [Vec3; 3] = std::array::from_fn(|k| reference_corner(k + 1) - reference_corner(k));
     let bases = SharedRotations::new(
         sheet
@@ -176,7 +185,6 @@ pub fn fit_axis_field(
     let rotation_blocks: Vec<usize> = (np..np + nt).collect();
     let mut solver =
         GuidedProjection::eliminating(3 * (np + nt), families, Some(&positions), &rotation_blocks)?;
-    let mut y: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
     y.resize(3 * (np + nt), 0.0);
     let solver_options = SolverOptions {
         max_iterations: options.iterations,
@@ -187,9 +195,8 @@ pub fn fit_axis_field(
         cancel: options.cancel.clone(),
         ..SolverOptions::default()
     };
-    let pairs = sheet.unit_pairs();
     let mut state = SolveState::new(options.eps);
-    let mut met = max_gap(&y, &pairs) < options.tolerance;
+    let mut met = false;
     while !met && state.iterations() < options.iterations {
         match solver.iterate(&mut y, &mut state, &solver_options)? {
             Some(info) => progress(&info),
@@ -209,4 +216,48 @@ pub fn fit_axis_field(
         points: y[..3 * np].chunks(3).map(Vec3::from_slice).collect(),
         solve,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::hex_disk;
+    use crate::mesh::validate_base_mesh;
+
+    /// A sheet already of unit walls (the rest of a fitted one) is taken as it is: no
+    /// iteration, nothing factorized. One pulled out of shape is fitted to unit walls again.
+    #[test]
+    fn a_fitted_sheet_is_taken_as_it_is() {
+        let mesh = hex_disk(3.0);
+        let conn = validate_base_mesh(&mesh).unwrap();
+        let sheet = Sheet::new(&mesh, &conn).unwrap();
+        let up = Vec3::new(0.0, 0.0, 1.0);
+        let points = sheet.initial_points(&mesh, &conn, |_| up);
+        let targets = vec![up; mesh.vertices.len()];
+        let none = vec![Vec3::ZERO; conn.num_edges()];
+        let fit = |points: &[Vec3]| {
+            let options = AxisFieldOptions::default();
+            fit_axis_field(
+                &sheet,
+                points,
+                &targets,
+                &none,
+                &none,
+                &options,
+                &mut |_| {},
+            )
+            .unwrap()
+        };
+        let same = fit(&points);
+        assert_eq!(same.points, points);
+        assert_eq!((same.solve.iterations, same.solve.factorizations), (0, 0));
+        assert!(same.solve.converged);
+
+        let stretched: Vec<Vec3> = points.iter().map(|&p| p * 1.05).collect();
+        let again = fit(&stretched);
+        assert!(again.solve.iterations > 0 && again.solve.converged);
+        let pairs = sheet.unit_pairs();
+        let y: Vec<f64> = again.points.iter().flat_map(|p| p.to_array()).collect();
+        assert!(max_gap(&y, &pairs) < AxisFieldOptions::default().tolerance);
+    }
 }

@@ -13,11 +13,12 @@ use crate::constraints::{Closeness, EdgeVectors, Layout, SharedTargets, VertexTa
 use crate::error::Result;
 use crate::geometry::Vec3;
 use crate::mesh::{Connectivity, PolyMesh};
+use crate::parallel::in_halves;
 use crate::solve::{
     Cancel, Constraint, GuidedProjection, IterationInfo, SolveReport, SolveState, SolverOptions,
     Substitution,
 };
-use crate::surface::Surface;
+use crate::surface::{Surface, PARALLEL_QUERIES_FROM};
 
 /// Placement goes on while a vertex is farther than this from S (mean edge lengths).
 const ON_SURFACE: f64 = 0.01;
@@ -201,11 +202,7 @@ pub fn place(
         }
         let x = solver.family_unknowns(&y);
         vertices = x.chunks(3).map(Vec3::from_slice).collect();
-        slide_onto(surface, &mut vertices, &axes, mean_edge);
-        let farthest = vertices
-            .iter()
-            .map(|&p| surface.closest_point(p).distance)
-            .fold(0.0, f64::max);
+        let farthest = slide_onto(surface, &mut vertices, &axes, mean_edge);
         if state.iterations() >= options.iterations && farthest <= ON_SURFACE * mean_edge {
             break;
         }
@@ -219,20 +216,70 @@ pub fn place(
     })
 }
 
+/// A slide this much shorter than its limit ends the Newton steps: the next would be of the
+/// order of its square.
+const SLID: f64 = 1e-7;
+
 /// Moves each vertex along its axis onto `surface` (a few Newton steps on its signed distance
 /// to the tangent plane at its closest point), never further than `limit` in one step.
-pub fn slide_onto(surface: &Surface, vertices: &mut [Vec3], axes: &[Vec3], limit: f64) {
-    for (p, &a) in vertices.iter_mut().zip(axes) {
-        for _ in 0..6 {
-            let c = surface.closest_point(*p);
-            let along = a.dot(c.normal);
-            if along.abs() < 0.2 || c.on_boundary {
-                break;
-            }
-            let step = (-(*p - c.point).dot(c.normal) / along).clamp(-limit, limit);
-            *p += a * step;
-            if step.abs() < 1e-12 * limit {
-                break;
+/// Returns the largest distance of a vertex from S afterwards.
+pub fn slide_onto(surface: &Surface, vertices: &mut [Vec3], axes: &[Vec3], limit: f64) -> f64 {
+    let mut moved: Vec<(Vec3, f64)> = vertices.iter().map(|&p| (p, 0.0)).collect();
+    in_halves(&mut moved, PARALLEL_QUERIES_FROM, |first, part| {
+        for (k, (p, distance)) in part.iter_mut().enumerate() {
+            *distance = slid(surface, p, axes[first + k], limit);
+        }
+    });
+    for (v, (p, _)) in vertices.iter_mut().zip(&moved) {
+        *v = *p;
+    }
+    moved.iter().map(|m| m.1).fold(0.0, f64::max)
+}
+
+/// `p` slid along `axis` onto `surface` (see [`slide_onto`]); its distance from S then (at most
+/// that before a last step of less than [`SLID`] limits).
+fn slid(surface: &Surface, p: &mut Vec3, axis: Vec3, limit: f64) -> f64 {
+    let mut c = surface.closest_point(*p);
+    for _ in 0..6 {
+        let along = axis.dot(c.normal);
+        if along.abs() < 0.2 || c.on_boundary {
+            break;
+        }
+        let step = (-(*p - c.point).dot(c.normal) / along).clamp(-limit, limit);
+        *p += axis * step;
+        if step.abs() < SLID * limit {
+            return c.distance;
+        }
+        c = surface.closest_point(*p);
+    }
+    c.distance
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Vertices above S slide down their axes onto it; one beyond S's border, whose foot is on
+    /// the border, stays, and its distance is the farthest. On two threads as on one.
+    #[test]
+    fn vertices_slide_onto_s_along_their_axes() {
+        let surface = Surface::from_mesh(&PolyMesh::unit_square()).unwrap();
+        for count in [3, PARALLEL_QUERIES_FROM + 1] {
+            let mut vertices: Vec<Vec3> = (0..count)
+                .map(|k| Vec3::new(0.1 + 0.8 * (k % 7) as f64 / 7.0, 0.5, 0.3))
+                .collect();
+            vertices[count - 1] = Vec3::new(1.2, 0.5, 0.0);
+            let tilted = Vec3::new(0.3, 0.0, 1.0).normalized();
+            let mut axes = vec![tilted; count];
+            axes[count - 1] = Vec3::new(0.0, 0.0, 1.0);
+            let start = vertices.clone();
+            let farthest = slide_onto(&surface, &mut vertices, &axes, 1.0);
+            assert!((farthest - 0.2).abs() < 1e-12, "{count}: {farthest}");
+            assert_eq!(vertices[count - 1], start[count - 1]);
+            for (p, s) in vertices.iter().zip(&start).take(count - 1) {
+                assert!(p.z.abs() < 1e-12, "{p:?}");
+                // Along the axis: down 0.3, across 0.3 * 0.3.
+                assert!((p.x - (s.x - 0.09)).abs() < 1e-12, "{p:?} from {s:?}");
             }
         }
     }

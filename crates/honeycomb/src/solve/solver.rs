@@ -426,6 +426,27 @@ impl<'a> GuidedProjection<'a> {
 }
 
 impl SolveReport {
+    /// The report of a solve over `unknowns` whose start already passed its test: no
+    /// iteration, nothing factorized, converged.
+    pub fn untouched(unknowns: usize) -> SolveReport {
+        SolveReport {
+            iterations: 0,
+            converged: true,
+            unknowns,
+            eliminated_unknowns: 0,
+            matrix_nnz: 0,
+            factor_nnz: 0,
+            factor_threads: 0,
+            factorizations: 0,
+            seconds_symbolic: 0.0,
+            seconds_assembly: 0.0,
+            seconds_factorization: 0.0,
+            seconds_other: 0.0,
+            families: Vec::new(),
+            history: Vec::new(),
+        }
+    }
+
     /// This report followed by `next`, a later solve of the same problem: iterations, work and
     /// time add up, the residuals and the convergence are the later solve's.
     pub fn then(mut self, next: SolveReport) -> SolveReport {

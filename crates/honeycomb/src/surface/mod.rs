@@ -38,6 +38,10 @@ pub struct ClosestPoint {
     pub on_boundary: bool,
 }
 
+/// From this many points on, closest points are found on two threads (a query takes about a
+/// microsecond, starting a thread some tens).
+pub const PARALLEL_QUERIES_FROM: usize = 1000;
+
 /// A triangulated, consistently oriented reference surface with its acceleration structures.
 #[derive(Clone, Debug)]
 pub struct Surface {
