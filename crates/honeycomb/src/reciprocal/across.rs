@@ -132,9 +132,6 @@ pub fn walls_across(
     };
     let mut drops = 0;
     let mut unconverged_before = false;
-    // A drop round's fit goes on from where the last one stopped, its guides as faded as they
-    // were: from full weight they would pull the sheet of the rest far from unit walls again.
-    let mut field_options = options.field.clone();
     let placement = PlacementOptions {
         edges_along_s: options.targets != AxisTargets::Normals,
         ..options.placement.clone()
@@ -163,11 +160,10 @@ pub fn walls_across(
             &targets,
             &edges,
             &facing,
-            &field_options,
+            &options.field,
             &mut |i| progress(Stage::AxisField, i),
         )?;
         field_iterations += field.solve.iterations;
-        field_options.fade_guides(field.solve.iterations);
         let field_converged = field.solve.converged;
         chain(field.solve);
         points = field.points;
