@@ -79,8 +79,10 @@ pub fn broken_boundary_cells(h: &Honeycomb, conn: &Connectivity, m: &Measures) -
 }
 
 /// At most this share of the cells may be cut off with a broken cell (a peninsula at the
-/// boundary, not a lobe of the structure); they go with it.
-const CUT_OFF_SHARE: f64 = 0.01;
+/// boundary, not a lobe of the structure); they go with it. The tip of a thin spike of S is
+/// such a peninsula: where the cell at its root breaks, keeping it would keep that cell, and
+/// the whole grid would be given up for one crossed wall.
+const CUT_OFF_SHARE: f64 = 0.02;
 
 /// Of `candidates` (sorted), those that can go in turn while the rest of the cells stays one
 /// piece (cells joined through shared edges), with the few cells a candidate would cut off
@@ -334,5 +336,65 @@ mod tests {
         let mut expected = vec![index(neck), index(tip)];
         expected.sort();
         assert_eq!(keeping_one_piece(&conn, cells, &[index(neck)]), expected);
+    }
+
+    /// A broken cell at the root of a peninsula goes with the peninsula while that is at most
+    /// 2% of the cells (the tip of a thin spike), and stays when the peninsula is larger (a
+    /// lobe of the structure).
+    #[test]
+    fn a_spike_goes_with_its_root_a_lobe_does_not() {
+        let disk = hex_disk(14.0);
+        let cells = |m: &PolyMesh| m.faces.len();
+        let tip = disk.face_centroid(
+            (0..cells(&disk))
+                .max_by(|&a, &b| disk.face_centroid(a).x.total_cmp(&disk.face_centroid(b).x))
+                .unwrap(),
+        );
+        // The cells within `reach` of the tip make the peninsula; every cell around it goes
+        // but the root, the one nearest the disk's centre.
+        let peninsula = |reach: f64| {
+            let near: Vec<usize> = (0..cells(&disk))
+                .filter(|&f| (disk.face_centroid(f) - tip).norm() < reach)
+                .collect();
+            let conn = Connectivity::build(&disk).unwrap();
+            let mut around: Vec<usize> = near
+                .iter()
+                .flat_map(|&f| conn.face_edges[f].iter())
+                .flat_map(|&e| conn.edge_faces[e].iter().flatten().copied())
+                .filter(|g| !near.contains(g))
+                .collect();
+            around.sort();
+            around.dedup();
+            let root = *around
+                .iter()
+                .min_by(|&&a, &&b| {
+                    let d = |f: usize| disk.face_centroid(f).norm();
+                    d(a).total_cmp(&d(b))
+                })
+                .unwrap();
+            let moat: Vec<usize> = around.into_iter().filter(|&g| g != root).collect();
+            let island = without_cells(&disk, &moat);
+            let conn = Connectivity::build(&island).unwrap();
+            assert_eq!(conn.pieces(&vec![false; cells(&island)]).len(), 1);
+            let index = |f: usize| f - moat.iter().filter(|&&g| g < f).count();
+            let mut expected: Vec<usize> = near.iter().map(|&f| index(f)).collect();
+            expected.push(index(root));
+            expected.sort();
+            let share = near.len() as f64 / cells(&island) as f64;
+            (
+                keeping_one_piece(&conn, cells(&island), &[index(root)]),
+                expected,
+                share,
+            )
+        };
+        let (gone, expected, share) = peninsula(2.0);
+        assert!(
+            share > 0.01 && share <= 0.02,
+            "the spike is {share} of the cells"
+        );
+        assert_eq!(gone, expected);
+        let (gone, _, share) = peninsula(6.0);
+        assert!(share > 0.02, "the lobe is {share} of the cells");
+        assert!(gone.is_empty(), "{gone:?}");
     }
 }
