@@ -12,7 +12,9 @@ use super::{across_optimized, again_from, counted, is_clean, uncross, Solved, St
 use crate::error::{rounded, Error, Result};
 use crate::mesh::PolyMesh;
 use crate::optimize::{optimize, OptimizeOptions, Optimized};
-use crate::reciprocal::{walls_across, AcrossOptions, PlacementOptions, Stage, Start};
+use crate::reciprocal::{
+    trim_drawn_out, walls_across, AcrossOptions, PlacementOptions, Stage, Start, DRAWN_OUT,
+};
 use crate::structure::{Honeycomb, Measures};
 use crate::surface::Surface;
 use std::time::Instant;
@@ -86,6 +88,7 @@ pub fn evened(
         if let Some(last) = &best {
             next.dropped += last.dropped;
             next.trimmed += last.trimmed;
+            next.drawn_out += last.drawn_out;
         }
         best = Some(next);
         if even {
@@ -111,8 +114,14 @@ pub fn evened(
         lean(&again.result.1)
     );
     if again.dropped > 0 {
+        let drawn_out = match again.drawn_out {
+            0 => String::new(),
+            n => format!(
+                ", {n} of them drawn out to an edge of {DRAWN_OUT} mean edge lengths or more"
+            ),
+        };
         note += &format!(
-            "; {} dropped or trimmed (initial.obj is the mesh without them)",
+            "; {} dropped or trimmed{drawn_out} (initial.obj is the mesh without them)",
             counted(again.dropped, "boundary cell").replacen(' ', " more ", 1)
         );
     }
@@ -134,6 +143,8 @@ struct Round {
     base: PolyMesh,
     dropped: usize,
     trimmed: usize,
+    /// The trimmed cells that were drawn out ([`trim_drawn_out`]).
+    drawn_out: usize,
 }
 
 /// One round from `h` on `base` (the base mesh without the cells dropped so far): `steps` of
@@ -199,6 +210,9 @@ fn round(
         Err(Error::Cancelled) => return Err(Error::Cancelled),
         Err(_) => return Ok(None),
     };
+    let trimmed_before = across.trimmed_cells;
+    let across = trim_drawn_out(across, UNEVEN_CELLS_CV, DROPPED_SHARE, model_surface);
+    let drawn_out = across.trimmed_cells - trimmed_before;
     let mut measures = across.measures;
     let mut optimized = across_optimized(
         across.honeycomb,
@@ -214,5 +228,6 @@ fn round(
         base: across.base,
         dropped: across.dropped_cells,
         trimmed: across.trimmed_cells,
+        drawn_out,
     }))
 }

@@ -27,4 +27,4 @@ pub use axis_field::{fit_axis_field, AxisFieldOptions};
 pub use placement::{place, PlacementOptions};
 pub use sheet::Sheet;
 pub use targets::{AxisTargets, SHADING_TILTS};
-pub use trim::{trim_overhang, ON_S};
+pub use trim::{trim_drawn_out, trim_overhang, DRAWN_OUT, ON_S};

@@ -78,6 +78,104 @@ pub fn overhanging_cells(
     trimmed
 }
 
+/// A boundary cell with an edge this many mean edge lengths long, or longer, is drawn out.
+pub const DRAWN_OUT: f64 = 1.5;
+
+/// `across` without its drawn-out boundary cells ([`drawn_out_cells`]), measured again on
+/// `surface`: where the axes lean steeply at S's border a few boundary cells are drawn out to
+/// two or three times the mean edge, and those alone can make the cells uneven.
+pub fn trim_drawn_out(across: Across, uneven: f64, max_share: f64, surface: &Surface) -> Across {
+    let trimmed = drawn_out_cells(&across.honeycomb, &across.connectivity, uneven, max_share);
+    if trimmed.is_empty() {
+        return across;
+    }
+    let Ok((honeycomb, connectivity)) = without_honeycomb_cells(&across.honeycomb, &trimmed) else {
+        return across;
+    };
+    let measures = measure(&honeycomb, surface);
+    Across {
+        base: without_cells(&across.base, &trimmed),
+        honeycomb,
+        connectivity,
+        measures,
+        dropped_cells: across.dropped_cells + trimmed.len(),
+        trimmed_cells: across.trimmed_cells + trimmed.len(),
+        ..across
+    }
+}
+
+/// The boundary cells of `h` with an edge [`DRAWN_OUT`] mean edge lengths long or longer,
+/// longest edge first, each taken while it lowers the edge-length cv and leaves one piece,
+/// until the cv is below `uneven` (sorted): all of them when that takes at most `max_share`
+/// of the cells, else none (the cells stay uneven either way; coverage is not given up for a
+/// little evenness).
+pub fn drawn_out_cells(
+    h: &Honeycomb,
+    conn: &Connectivity,
+    uneven: f64,
+    max_share: f64,
+) -> Vec<usize> {
+    let cells = h.base.faces.len();
+    let length: Vec<f64> = (conn.edges.iter())
+        .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
+        .collect();
+    // Per edge, the cells on it that stay.
+    let mut sides: Vec<usize> = (conn.edge_faces.iter())
+        .map(|f| f.iter().flatten().count())
+        .collect();
+    let cv = |sides: &[usize]| {
+        let kept = || {
+            length
+                .iter()
+                .zip(sides)
+                .filter(|(_, &n)| n > 0)
+                .map(|(l, _)| *l)
+        };
+        let count = kept().count() as f64;
+        let mean = kept().sum::<f64>() / count;
+        (kept().map(|l| (l - mean).powi(2)).sum::<f64>() / count).sqrt() / mean
+    };
+    let mut now = cv(&sides);
+    let unit = length.iter().sum::<f64>() / length.len().max(1) as f64;
+    let longest = |f: usize| {
+        conn.face_edges[f]
+            .iter()
+            .map(|&e| length[e])
+            .fold(0.0, f64::max)
+    };
+    let mut drawn_out: Vec<usize> = (0..cells)
+        .filter(|&f| conn.is_boundary_face(f) && longest(f) >= DRAWN_OUT * unit)
+        .collect();
+    drawn_out.sort_by(|&a, &b| longest(b).total_cmp(&longest(a)));
+    let allowed = (max_share * cells as f64).floor() as usize;
+    let mut gone = vec![false; cells];
+    let mut trimmed = Vec::new();
+    for f in drawn_out {
+        if now < uneven || trimmed.len() == allowed {
+            break;
+        }
+        gone[f] = true;
+        for &e in &conn.face_edges[f] {
+            sides[e] -= 1;
+        }
+        let lower = cv(&sides);
+        if lower < now && conn.pieces(&gone).len() == 1 {
+            now = lower;
+            trimmed.push(f);
+        } else {
+            gone[f] = false;
+            for &e in &conn.face_edges[f] {
+                sides[e] += 1;
+            }
+        }
+    }
+    if now >= uneven {
+        return Vec::new();
+    }
+    trimmed.sort_unstable();
+    trimmed
+}
+
 /// `h` without the cells `drop` (sorted) and the vertices no other cell holds; every other
 /// vertex keeps its position and axis, so M' keeps its offset.
 pub fn without_honeycomb_cells(h: &Honeycomb, drop: &[usize]) -> Result<(Honeycomb, Connectivity)> {
@@ -131,6 +229,66 @@ mod tests {
         assert!(m.closeness_max < 1e-12, "{}", m.closeness_max);
         assert!(m.omega_max_deg < 1e-9, "{}", m.omega_max_deg);
         assert!(m.delta_max < 1e-12, "{}", m.delta_max);
+    }
+
+    /// `count` boundary cells of `h` whose outer corners (held by no other cell) are pushed
+    /// out in the plane by `push` edges: drawn out, the rest as it was. Sorted.
+    fn drawn(
+        h: &Honeycomb,
+        conn: &Connectivity,
+        count: usize,
+        push: f64,
+    ) -> (Honeycomb, Vec<usize>) {
+        let faces = &h.base.faces;
+        let outer = |v: usize| conn.valence(v) == 2;
+        let mut cells: Vec<usize> = (0..faces.len())
+            .filter(|&f| faces[f].iter().filter(|&&v| outer(v)).count() >= 2)
+            .collect();
+        // Spread around the disk, so that no two share a corner.
+        let step = cells.len() / count;
+        cells = (0..count).map(|k| cells[k * step]).collect();
+        let mut base = h.base.clone();
+        for &f in &cells {
+            for &v in faces[f].iter().filter(|&&v| outer(v)) {
+                let p = base.vertices[v];
+                base.vertices[v] = p + Vec3::new(p.x, p.y, 0.0).normalized() * push;
+            }
+        }
+        cells.sort_unstable();
+        (
+            Honeycomb::new(base, conn, h.axes.clone(), h.thickness),
+            cells,
+        )
+    }
+
+    #[test]
+    fn drawn_out_boundary_cells_go_until_the_cells_are_even() {
+        let (h, conn, surface) = flat();
+        assert!(drawn_out_cells(&h, &conn, 0.12, 0.1).is_empty());
+        let (out, stretched) = drawn(&h, &conn, 4, 1.5);
+        let before = measure(&out, &surface).edge_length_cv;
+        assert!(before >= 0.12, "{before}");
+        let trimmed = drawn_out_cells(&out, &conn, 0.12, 0.1);
+        assert!(!trimmed.is_empty(), "{before}");
+        assert!(
+            trimmed.iter().all(|f| stretched.contains(f)),
+            "{trimmed:?} of {stretched:?}"
+        );
+        let (rest, rest_conn) = without_honeycomb_cells(&out, &trimmed).unwrap();
+        let m = measure(&rest, &surface);
+        assert!(m.edge_length_cv < 0.12, "{before} -> {}", m.edge_length_cv);
+        assert!(m.omega_max_deg < 1e-9, "{}", m.omega_max_deg);
+        assert!(m.delta_max < 1e-12, "{}", m.delta_max);
+        assert_eq!(
+            rest_conn.pieces(&vec![false; rest.base.faces.len()]).len(),
+            1
+        );
+        // More than the share allows: none goes, the cells stay as they are.
+        let share = (trimmed.len() - 1) as f64 / h.base.faces.len() as f64;
+        assert!(drawn_out_cells(&out, &conn, 0.12, share).is_empty());
+        // Cells a little drawn out (under 1.5 mean edges) stay even where the cv is high.
+        let (mild, _) = drawn(&h, &conn, 4, 0.3);
+        assert!(drawn_out_cells(&mild, &conn, 0.0, 0.1).is_empty());
     }
 
     #[test]
