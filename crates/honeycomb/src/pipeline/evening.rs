@@ -33,6 +33,9 @@ const GENTLE_STEPS: usize = 2;
 /// stands. Their ratio sets the trade between even cells and axes along S's normals.
 const EVENNESS: f64 = 0.3;
 const HELD_WALLS: f64 = 0.1;
+/// And, fading after the first steps, every node axis towards S's normal: of the ways to even
+/// the cells the steps then take one that leans the axes less than holding the walls alone.
+const AXES_ALONG_NORMALS: f64 = 0.2;
 /// The placement's pull to where the steps put the vertices (inside and on the boundary): those
 /// positions are the even cells.
 const HELD_VERTICES: f64 = 1.0;
@@ -162,6 +165,7 @@ fn round(
     let mut stepping = again_from(h, options, steps);
     stepping.weights.evenness = EVENNESS;
     stepping.weights.held_walls = HELD_WALLS;
+    stepping.weights.guide = AXES_ALONG_NORMALS;
     let stepped = optimize(&h.base, Some(surface), &stepping, &mut |info| {
         *spent += 1;
         progress(Step::Iteration("evening the cells", 1, info))
