@@ -21,16 +21,21 @@ pub const ON_S: f64 = 0.05;
 pub fn trim_overhang(across: Across, max_share: f64, surface: &Surface) -> Across {
     let (h, conn, m) = (&across.honeycomb, &across.connectivity, &across.measures);
     let trimmed = overhanging_cells(h, conn, m, max_share);
+    without_trimmed(across, &trimmed, surface)
+}
+
+/// `across` without the cells `trimmed` (sorted), measured again on `surface`; as it was when
+/// there are none, or when the mesh checks refuse what is left (a cell left too thin).
+fn without_trimmed(across: Across, trimmed: &[usize], surface: &Surface) -> Across {
     if trimmed.is_empty() {
         return across;
     }
-    // Geometry the mesh checks refuse (a cell left too thin) keeps the untrimmed result.
-    let Ok((honeycomb, connectivity)) = without_honeycomb_cells(h, &trimmed) else {
+    let Ok((honeycomb, connectivity)) = without_honeycomb_cells(&across.honeycomb, trimmed) else {
         return across;
     };
     let measures = measure(&honeycomb, surface);
     Across {
-        base: without_cells(&across.base, &trimmed),
+        base: without_cells(&across.base, trimmed),
         honeycomb,
         connectivity,
         measures,
@@ -86,22 +91,7 @@ pub const DRAWN_OUT: f64 = 1.5;
 /// two or three times the mean edge, and those alone can make the cells uneven.
 pub fn trim_drawn_out(across: Across, uneven: f64, max_share: f64, surface: &Surface) -> Across {
     let trimmed = drawn_out_cells(&across.honeycomb, &across.connectivity, uneven, max_share);
-    if trimmed.is_empty() {
-        return across;
-    }
-    let Ok((honeycomb, connectivity)) = without_honeycomb_cells(&across.honeycomb, &trimmed) else {
-        return across;
-    };
-    let measures = measure(&honeycomb, surface);
-    Across {
-        base: without_cells(&across.base, &trimmed),
-        honeycomb,
-        connectivity,
-        measures,
-        dropped_cells: across.dropped_cells + trimmed.len(),
-        trimmed_cells: across.trimmed_cells + trimmed.len(),
-        ..across
-    }
+    without_trimmed(across, &trimmed, surface)
 }
 
 /// The boundary cells of `h` with an edge [`DRAWN_OUT`] mean edge lengths long or longer,
