@@ -276,7 +276,7 @@ mod tests {
         // More than the share allows: none goes, the cells stay as they are.
         let share = (trimmed.len() - 1) as f64 / h.base.faces.len() as f64;
         assert!(drawn_out_cells(&out, &conn, 0.12, share).is_empty());
-        // Cells a little drawn out (under 1.5 mean edges) stay even where the cv is high.
+        // Cells drawn out less (every edge under 1.5 mean edges) stay, however uneven.
         let (mild, _) = drawn(&h, &conn, 4, 0.3);
         assert!(drawn_out_cells(&mild, &conn, 0.0, 0.1).is_empty());
     }
