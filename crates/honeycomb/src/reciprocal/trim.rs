@@ -10,7 +10,7 @@ use super::Across;
 use crate::error::Result;
 use crate::mesh::{validate_base_mesh, Connectivity};
 use crate::optimize::{keeping_one_piece, kept_vertices, without_cells};
-use crate::structure::{measure, Honeycomb, Measures};
+use crate::structure::{edge_length_cv, measure, Honeycomb, Measures};
 use crate::surface::Surface;
 
 /// A vertex within this many mean edge lengths of S is on S.
@@ -114,16 +114,11 @@ pub fn drawn_out_cells(
         .map(|f| f.iter().flatten().count())
         .collect();
     let cv = |sides: &[usize]| {
-        let kept = || {
-            length
-                .iter()
-                .zip(sides)
-                .filter(|(_, &n)| n > 0)
-                .map(|(l, _)| *l)
-        };
-        let count = kept().count() as f64;
-        let mean = kept().sum::<f64>() / count;
-        (kept().map(|l| (l - mean).powi(2)).sum::<f64>() / count).sqrt() / mean
+        let kept: Vec<f64> = (length.iter().zip(sides))
+            .filter(|(_, &n)| n > 0)
+            .map(|(l, _)| *l)
+            .collect();
+        edge_length_cv(&kept)
     };
     let mut now = cv(&sides);
     let unit = length.iter().sum::<f64>() / length.len().max(1) as f64;

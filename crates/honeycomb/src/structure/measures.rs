@@ -76,6 +76,14 @@ impl Spread {
     }
 }
 
+/// The coefficient of variation of edge lengths: their standard deviation over their mean.
+pub fn edge_length_cv(lengths: &[f64]) -> f64 {
+    let count = lengths.len().max(1) as f64;
+    let mean = lengths.iter().sum::<f64>() / count;
+    let variance = lengths.iter().map(|l| (l - mean).powi(2)).sum::<f64>() / count;
+    variance.sqrt() / mean.max(1e-300)
+}
+
 /// Per wall (edge `[a, b]`), the larger of its two nodes' values: a wall is as bad as its
 /// worse end.
 pub fn per_wall_worse_end(edges: &[[usize; 2]], per_node: &[f64]) -> Vec<f64> {
@@ -221,11 +229,6 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         .iter()
         .map(|&[a, b]| (h.base.vertices[a] - h.base.vertices[b]).norm())
         .collect();
-    let variance = lengths
-        .iter()
-        .map(|l| (l - mean_edge_length).powi(2))
-        .sum::<f64>()
-        / lengths.len().max(1) as f64;
     let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
     let avg = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
     Measures {
@@ -241,7 +244,7 @@ pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
         valence_histogram,
         axis_normal_deg: Spread::of(&lean),
         parallel_baseline_deg: Spread::of(&baseline),
-        edge_length_cv: variance.sqrt() / mean_edge_length.max(1e-300),
+        edge_length_cv: edge_length_cv(&lengths),
         omega_per_node,
         delta_per_wall,
         convex_per_wall,
