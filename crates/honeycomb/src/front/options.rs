@@ -9,7 +9,7 @@ use crate::optimize::{
     WallNormals, Weights,
 };
 use crate::pipeline::Walls;
-use crate::reciprocal::AxisTargets;
+use crate::reciprocal::{AxisTargets, Turn};
 use crate::solve::SolverOptions;
 use crate::structure::QuadPattern;
 use crate::surface::Surface;
@@ -460,9 +460,9 @@ pub(crate) struct Shading {
 impl Shading {
     /// What the node axes are fitted to: S's normals turned across the light and the sun
     /// path by at most `max_tilt` radians.
-    pub fn targets(&self, max_tilt: f64) -> AxisTargets {
+    pub fn targets(&self, turn: Turn, surface: &Surface) -> AxisTargets {
         let path: Vec<Vec3> = self.sun_path.iter().map(|d| d.normalized()).collect();
-        AxisTargets::across_light(self.light, &path, max_tilt)
+        AxisTargets::across_light(self.light, &path, turn, surface.mean_normal())
     }
 }
 

@@ -11,7 +11,7 @@ use crate::optimize::{
     QuadOptions,
 };
 use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Pipelined, Strategy, Walls};
-use crate::reciprocal::{AcrossOptions, AxisTargets, SHADING_TILTS};
+use crate::reciprocal::{AcrossOptions, AxisTargets, Turn, SHADING_TURNS};
 use crate::report::Report;
 use crate::structure::{
     axes_measures, face_measures, measure, QuadPattern, FLAT_QUAD, FLAT_QUAD_MEAN,
@@ -155,7 +155,7 @@ pub fn optimize(
         // prescribed across it where those are no clean honeycomb; its depth is given
         // afterwards (see `shade`).
         solver_options.thickness = None;
-        let tries = SHADING_TILTS.map(ShadingTry::Turned);
+        let tries = SHADING_TURNS.map(ShadingTry::Turned);
         let tries = [&tries[..], &[ShadingTry::Prescribed]].concat();
         // A turned try whose walls were not clean already ended in the guided projection.
         let mut guided_ran = false;
@@ -164,9 +164,9 @@ pub fn optimize(
                 return Ok(Tried::Skipped);
             }
             let (walls, targets) = match shading_try {
-                ShadingTry::Turned(tilt) => (options.walls, shading.targets(tilt)),
+                ShadingTry::Turned(turn) => (options.walls, shading.targets(turn, surface)),
                 // `solver_options` prescribe the axes across the light.
-                ShadingTry::Prescribed => (Walls::Free, shading.targets(SHADING_TILTS[0])),
+                ShadingTry::Prescribed => (Walls::Free, shading.targets(SHADING_TURNS[0], surface)),
                 ShadingTry::Unturned => unreachable!("a designer's mesh prescribes the axes"),
             };
             let solved = solve_base(
@@ -550,12 +550,12 @@ fn shading_pipeline(
     shading: &Shading,
     progress: &mut Progress,
 ) -> Result<Outcome> {
-    let tries = SHADING_TILTS.map(ShadingTry::Turned);
+    let tries = SHADING_TURNS.map(ShadingTry::Turned);
     let tries = [&tries[..], &[ShadingTry::Unturned]].concat();
     shading_tries(&tries, progress, |shading_try, progress| {
         let (walls, targets) = match shading_try {
-            ShadingTry::Turned(tilt) => (strategy.walls, shading.targets(tilt)),
-            ShadingTry::Unturned => (Walls::Free, shading.targets(SHADING_TILTS[0])),
+            ShadingTry::Turned(turn) => (strategy.walls, shading.targets(turn, surface)),
+            ShadingTry::Unturned => (Walls::Free, shading.targets(SHADING_TURNS[0], surface)),
             ShadingTry::Prescribed => unreachable!("the pipeline prescribes no axes"),
         };
         let tried = Strategy {
@@ -590,8 +590,8 @@ fn shading_pipeline(
 /// One way to a shading device.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum ShadingTry {
-    /// Walls across S turned across the light by at most this angle (radians).
-    Turned(f64),
+    /// Walls across S turned across the light so.
+    Turned(Turn),
     /// The guided projection with the axes prescribed across the light.
     Prescribed,
     /// The guided projection from walls orthogonal to S, not turned across the light: the
@@ -602,10 +602,11 @@ enum ShadingTry {
 impl std::fmt::Display for ShadingTry {
     fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
         match self {
-            ShadingTry::Turned(tilt) => write!(
+            ShadingTry::Turned(turn) => write!(
                 f,
-                "the axes turned across the light at most {} degrees",
-                degrees(*tilt)
+                "the axes turned across the light at most {} degrees{}",
+                degrees(turn.max_tilt),
+                if turn.steady { ", leaning one way" } else { "" }
             ),
             ShadingTry::Prescribed => {
                 write!(
@@ -730,10 +731,10 @@ mod tests {
     /// Tries that give no honeycomb end in one error that names each and why.
     #[test]
     fn shading_tries_that_all_fail_are_named() {
-        let tries = SHADING_TILTS.map(ShadingTry::Turned);
+        let tries = SHADING_TURNS.map(ShadingTry::Turned);
         let err = shading_tries(&tries, &mut Progress::silent(), |t, _| {
             Ok(match t {
-                ShadingTry::Turned(tilt) if tilt < 0.6 => Tried::Skipped,
+                ShadingTry::Turned(turn) if turn.max_tilt < 0.6 => Tried::Skipped,
                 _ => Tried::Failed("a node mirrored".into(), 10),
             })
         })
@@ -741,15 +742,10 @@ mod tests {
         .expect("no try made anything")
         .to_string();
         assert!(err.contains("at most 45 degrees: a node mirrored"), "{err}");
-        assert!(err.contains("at most 60 degrees: a node mirrored"), "{err}");
-        assert!(
-            err.contains("at most 37.5 degrees: a node mirrored"),
-            "{err}"
-        );
-        assert!(
-            err.contains("at most 52.5 degrees: a node mirrored"),
-            "{err}"
-        );
+        for tilt in ["45", "60", "75", "37.5", "52.5"] {
+            let named = format!("at most {tilt} degrees, leaning one way: a node mirrored");
+            assert!(err.contains(&named), "{err}");
+        }
         assert!(!err.contains("30 degrees"), "{err}");
     }
 
@@ -758,8 +754,8 @@ mod tests {
     #[test]
     fn the_unturned_walls_are_the_last_resort() {
         let tries = [
-            ShadingTry::Turned(SHADING_TILTS[0]),
-            ShadingTry::Turned(SHADING_TILTS[1]),
+            ShadingTry::Turned(SHADING_TURNS[0]),
+            ShadingTry::Turned(SHADING_TURNS[1]),
             ShadingTry::Unturned,
         ];
         let mut asked = Vec::new();
@@ -789,19 +785,19 @@ mod tests {
         let (mut asked, mut made) = (Vec::new(), 0);
         let out = shading_tries(&tries, &mut Progress::silent(), |t, _| {
             asked.push(t);
-            if t != ShadingTry::Turned(SHADING_TILTS[1]) {
+            if t != ShadingTry::Turned(SHADING_TURNS[1]) {
                 return Ok(Tried::Failed("a node mirrored".into(), 7));
             }
             let solved = solve_base(
                 &base,
                 &surface,
                 Walls::Across,
-                shading.targets(SHADING_TILTS[1]),
+                shading.targets(SHADING_TURNS[1], &surface),
                 &OptimizeOptions::default(),
                 &mut |_| {},
             )?;
             made = solved.report.iterations_total;
-            let targets = shading.targets(SHADING_TILTS[1]);
+            let targets = shading.targets(SHADING_TURNS[1], &surface);
             let (optimized, report) =
                 shade(solved.optimized, solved.report, &surface, &shading, targets);
             Ok(Tried::Made(Box::new(outcome(
