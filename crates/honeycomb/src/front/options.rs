@@ -459,7 +459,7 @@ pub(crate) struct Shading {
 
 impl Shading {
     /// What the node axes are fitted to: S's normals turned across the light and the sun
-    /// path by at most `max_tilt` radians.
+    /// path as `turn` says (a steady turn leaning the way S's mean normal turns).
     pub fn targets(&self, turn: Turn, surface: &Surface) -> AxisTargets {
         let path: Vec<Vec3> = self.sun_path.iter().map(|d| d.normalized()).collect();
         AxisTargets::across_light(self.light, &path, turn, surface.mean_normal())

@@ -590,7 +590,7 @@ fn shading_pipeline(
 /// One way to a shading device.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum ShadingTry {
-    /// Walls across S turned across the light so.
+    /// Walls across S, their axes turned across the light as this says.
     Turned(Turn),
     /// The guided projection with the axes prescribed across the light.
     Prescribed,
