@@ -17,6 +17,7 @@ mod opposite_walls;
 mod orthogonal_difference;
 mod parallel_mesh;
 mod parallel_on_axes;
+mod planarity_bound;
 mod polyline_fairness;
 mod prescribed_axes;
 mod quad_planarity;
@@ -24,6 +25,7 @@ mod rigid_triangles;
 mod tangential_hold;
 mod targets;
 mod wall_consistency;
+mod wall_convexity;
 mod wall_plane;
 
 pub use boundary_curve::BoundaryCurve;
@@ -42,6 +44,7 @@ pub use opposite_walls::OppositeWalls;
 pub use orthogonal_difference::OrthogonalDifference;
 pub use parallel_mesh::{ConstantDepth, EdgeParallelity, OffsetBlock, OffsetOnAxis};
 pub use parallel_on_axes::{AxisSlides, ParallelOnAxes, ScalarTargets};
+pub use planarity_bound::BoundedPlanarity;
 pub use polyline_fairness::ZigzagFairness;
 pub use prescribed_axes::PrescribedAxes;
 pub use quad_planarity::{QuadNormalBlock, QuadNormalization, QuadPlanarity};
@@ -49,6 +52,7 @@ pub use rigid_triangles::{RigidTriangles, SharedRotations};
 pub use tangential_hold::TangentialHold;
 pub use targets::{AxisTargets, SharedTargets, VertexTargets};
 pub use wall_consistency::WallConsistency;
+pub use wall_convexity::WallConvexity;
 pub use wall_plane::WallPlane;
 
 #[cfg(test)]
