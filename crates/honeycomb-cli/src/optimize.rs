@@ -32,7 +32,7 @@ pub struct SolveArgs {
     /// Reference surface S (triangle/quad/polygon mesh); default: the base mesh itself.
     #[arg(long)]
     pub surface: Option<PathBuf>,
-    /// Maximum number of guided-projection iterations (with --quads: of the honeycomb, then of the capping) [default: 10, 20 with --light or --quads].
+    /// Maximum number of guided-projection iterations (with --quads: of the honeycomb, then of the capping) [default: 10, 20 with --light, 60 with --quads].
     #[arg(long, allow_negative_numbers = true)]
     pub iterations: Option<usize>,
     /// Distance between M and M' along the node axes, in model units (default 0.3 mean edge lengths).

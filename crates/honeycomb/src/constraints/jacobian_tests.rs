@@ -7,8 +7,9 @@ use crate::geometry::Vec3;
 use crate::mesh::Connectivity;
 use crate::mesh::PolyMesh;
 use crate::optimize::{
-    initial_normals, AxesOptions, CappingProblem, Frame, OptimizeOptions, PairingProblem,
-    ParallelOptions, Problem, ProblemBuilder, QuadOptions, QuadPattern, WallRows, Weights,
+    initial_normals, AxesOptions, CappingProblem, CappingTry, Frame, OptimizeOptions,
+    PairingProblem, ParallelOptions, Problem, ProblemBuilder, QuadOptions, QuadPattern, WallRows,
+    Weights,
 };
 use crate::solve::{jacobian_fd_error, Constraint};
 use crate::surface::Surface;
@@ -170,7 +171,15 @@ fn capping_families_match_finite_differences() {
             pattern,
             ..QuadOptions::default()
         };
-        let mut problem = CappingProblem::build(&mesh, &conn, &normals, &surface, &options, 0.3);
+        let axes: Vec<Vec3> = (mesh.vertices.iter())
+            .map(|&p| surface.normal_at(p))
+            .collect();
+        let walls = (normals.as_slice(), axes.as_slice(), 1.0);
+        let sliding = CappingTry {
+            closeness: 0.3,
+            sliding: true,
+        };
+        let mut problem = CappingProblem::build(&mesh, &conn, walls, &surface, &options, sliding);
         let cover = &problem.cover;
         assert_eq!(cover.quads.len(), 2 * mesh.faces.len());
         // The vertices, one unit normal per quad on S's side, one dummy per edge.
@@ -199,8 +208,10 @@ fn capping_families_match_finite_differences() {
             "quad_planarity",
             "fairness_zigzag",
             "fairness_straight",
+            "wall_convexity",
         ];
-        // Twice, so that the bounded closeness scales its far vertices by 4.
+        // Twice, so that the bounded closeness scales its far vertices by 4 (and the bounded
+        // planarity its bent quads).
         for family in problem.families.iter_mut() {
             family.refresh(&problem.x);
         }

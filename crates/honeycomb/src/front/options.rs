@@ -240,7 +240,8 @@ impl Options {
     /// The iterations asked for, or the default.
     pub fn max_iterations(&self) -> usize {
         self.iterations.unwrap_or(match self.variant {
-            Variant::Shading { .. } | Variant::Quads { .. } => 20,
+            Variant::Shading { .. } => 20,
+            Variant::Quads { .. } => 60,
             _ => 10,
         })
     }

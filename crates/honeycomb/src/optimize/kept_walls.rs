@@ -14,8 +14,8 @@ use crate::surface::Surface;
 
 /// The kept walls hold to roundoff: everything else gives way to them.
 const KEPT_WALLS_WEIGHT: f64 = 1000.0;
-/// The hold of each vertex along S (see `TangentialHold`).
-const HOLD_WEIGHT: f64 = 0.3;
+/// The hold of each vertex along S (see `TangentialHold`), where it is held.
+pub(crate) const HOLD_WEIGHT: f64 = 0.3;
 
 /// The honeycomb's walls as realized: each through its edge and the axes at its ends.
 pub(crate) fn realized_normals(h: &Honeycomb, conn: &Connectivity) -> Vec<Vec3> {
@@ -28,17 +28,16 @@ pub(crate) fn realized_normals(h: &Honeycomb, conn: &Connectivity) -> Vec<Vec3> 
 }
 
 /// The families every kept-walls solve has over the vertices of `normalized` (the first
-/// unknowns, as `layout` reads them): the kept walls, closeness to `surface` at weight
-/// `closeness` (firming up vertex by vertex past `bound`: see `BoundedCloseness`) and the hold
-/// along S.
+/// unknowns, as `layout` reads them): the kept walls (`normals`, one per edge of `conn`),
+/// closeness to `surface` at a weight (firming up vertex by vertex past a bound: see
+/// `BoundedCloseness`) and the hold along S at weight `hold`.
 pub(crate) fn kept_wall_families<'a>(
     layout: Layout,
     normalized: &PolyMesh,
-    conn: &Connectivity,
-    normals: &[Vec3],
+    (conn, normals): (&Connectivity, &[Vec3]),
     surface: &'a Surface,
-    closeness: f64,
-    bound: f64,
+    (closeness, bound): (f64, f64),
+    hold: f64,
 ) -> Vec<Box<dyn Constraint + 'a>> {
     let walls = (conn.edges.iter().zip(normals))
         .map(|(&[a, b], &normal)| FixedNormalRow { normal, a, b })
@@ -57,7 +56,7 @@ pub(crate) fn kept_wall_families<'a>(
             layout,
             &normalized.vertices,
             |p| surface.normal_at(p),
-            HOLD_WEIGHT,
+            hold,
         )),
     ]
 }

@@ -25,11 +25,11 @@ pub(crate) use parallel_pair::{pair, PairingProblem};
 pub use problem::{block_positions, initial_normals, node_walls, ProblemBuilder, WallRows};
 #[cfg(test)]
 pub use problem::{boundary_vertices_on_surface_boundary, families};
-#[cfg(test)]
-pub(crate) use quads::CappingProblem;
 pub use quads::QuadOptions;
 #[cfg(test)]
 pub use quads::QuadPattern;
+#[cfg(test)]
+pub(crate) use quads::{CappingProblem, CappingTry};
 #[cfg(test)]
 pub use unknowns::Block;
 pub use variants::{shading_axes, unit_light, AxesOptions, ParallelOptions};

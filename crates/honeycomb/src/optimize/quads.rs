@@ -4,12 +4,12 @@
 
 pub use crate::structure::QuadPattern;
 
-use super::kept_walls::kept_wall_families;
+use super::kept_walls::{kept_wall_families, HOLD_WEIGHT};
 use super::variants::check_weight;
 use super::Frame;
 use crate::constraints::{
-    FixedNormalRow, FixedNormals, Layout, MinEdgeLength, QuadNormalBlock, QuadNormalization,
-    QuadPlanarity, ZigzagFairness,
+    BoundedPlanarity, FixedNormalRow, FixedNormals, Layout, MinEdgeLength, QuadNormalBlock,
+    QuadNormalization, QuadPlanarity, WallConvexity, ZigzagFairness,
 };
 use crate::error::{Error, Result};
 use crate::geometry::{smallest_eigenvector, sum_of_outer_products, Vec3};
@@ -17,7 +17,7 @@ use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::{
     Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
 };
-use crate::structure::{face_measures, is_convex, Honeycomb, QuadCover};
+use crate::structure::{face_measures, is_convex, Honeycomb, QuadCover, FLAT_QUAD, FLAT_QUAD_MEAN};
 use crate::surface::Surface;
 
 #[derive(Clone, Debug)]
@@ -72,13 +72,63 @@ const FAIRNESS_ROLE: Role = Role::Condition;
 /// Which sides of a quad get a planarity row: all four (see `QuadPlanarity::sides`).
 const SIDES: [usize; 4] = [0, 1, 2, 3];
 
-/// Closeness to S, soft: the freedom to planarize lies mostly across S (each vertex slides
-/// along its node axis), and this is what it costs. Each vertex firms up once it strays past
-/// `FIRM_PAST` (see `BoundedCloseness`), so that the budget goes where the quads need it. Tried
-/// from loose to firm, within one budget of iterations for all, until no vertex is farther
-/// than `MAX_DISTANCE_FROM_S` from S and no wall crosses itself or runs backwards; if none
-/// is, the honeycomb stays as it was.
-const CLOSENESS_WEIGHTS: [f64; 4] = [0.03, 0.3, 1.0, 3.0];
+/// One capping try: how firmly the vertices keep to S, and whether they may slide along it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CappingTry {
+    /// Weight of closeness to S. The freedom to planarize lies mostly across S (each vertex
+    /// slides along its node axis), and this is what it costs; each vertex firms up once it
+    /// strays past `FIRM_PAST` (see `BoundedCloseness`), so that the bound goes where the
+    /// quads need it.
+    pub closeness: f64,
+    /// The vertices slide along S as freely as across it (up to their walls), the quads that
+    /// stay less planar than `FLAT_ENOUGH` firm up, and the walls are held convex; else each
+    /// vertex is held where it stands along S.
+    pub sliding: bool,
+}
+
+/// The held tries, within one budget of iterations for all, until no vertex is farther than
+/// `MAX_DISTANCE_FROM_S` from S and no wall crosses itself or runs backwards; if none is, the
+/// honeycomb stays as it was. From loose to firm.
+const HELD_TRIES: [CappingTry; 4] = [
+    CappingTry {
+        closeness: 0.03,
+        sliding: false,
+    },
+    CappingTry {
+        closeness: 0.3,
+        sliding: false,
+    },
+    CappingTry {
+        closeness: 1.0,
+        sliding: false,
+    },
+    CappingTry {
+        closeness: 3.0,
+        sliding: false,
+    },
+];
+
+/// Where the held quads miss the floors: where S twists, a quad's planarity needs its cell
+/// to shift along S within its walls, which only a slide gives.
+const SLIDING_TRY: CappingTry = CappingTry {
+    closeness: 0.03,
+    sliding: true,
+};
+
+/// The share of the budget the held tries have; the sliding try has the rest.
+const HELD_SHARE: f64 = 1.0 / 3.0;
+
+/// The hold along S of a sliding try: enough to pin the vertices' tangential moves that
+/// nothing else asks for, not the planarity's.
+const SLIDING_HOLD: f64 = 0.003;
+/// The quads a sliding try firms up (see `BoundedPlanarity`): short of the floor asked of a
+/// cover's worst quad (0.01), since one past it takes a few steps to come down.
+const FLAT_ENOUGH: f64 = 0.008;
+/// A sliding try keeps its regularization at this instead of letting it shrink: the slides
+/// along S are otherwise held by nothing but it, and longer steps cross walls.
+const SLIDING_EPS: f64 = 1e-3;
+/// Weight of the walls' convexity in a sliding try: above the planarity's firmest.
+const CONVEXITY_WEIGHT: f64 = 100.0;
 /// Where a vertex starts to firm up, in mean edge lengths: short of `MAX_DISTANCE_FROM_S`,
 /// since one past it takes a few steps to come back.
 const FIRM_PAST: f64 = 0.09;
@@ -111,7 +161,9 @@ pub struct Capped {
 /// vertices sit on their walls: along the node axes (off S, softly held) and, held harder,
 /// along S. A honeycomb on S keeps about one degree of freedom per cell; its two quads ask
 /// for two, which the slides along the axes give. With the wall normals as unknowns too the
-/// planarity pulls the node conditions with it and the solve ends off 120 degrees.
+/// planarity pulls the node conditions with it and the solve ends off 120 degrees. Where the
+/// quads held along S miss the floors, the vertices slide along S too (`SLIDING_TRY`), and
+/// the flatter capping is kept.
 pub(crate) fn cap(
     honeycomb: &Honeycomb,
     conn: &Connectivity,
@@ -122,20 +174,46 @@ pub(crate) fn cap(
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Capped> {
     let walls = (honeycomb, conn, normals);
-    cap_trying(
-        &CLOSENESS_WEIGHTS,
+    let budget = solver.max_iterations;
+    let held_budget = ((budget as f64 * HELD_SHARE).ceil() as usize).clamp(1, budget);
+    let held_solver = SolverOptions {
+        max_iterations: held_budget,
+        ..solver.clone()
+    };
+    let held = cap_trying(&HELD_TRIES, walls, surface, options, &held_solver, progress)?;
+    let planarity = |c: &Capped| face_measures(&c.vertices, &c.cover.quads);
+    let flat = planarity(&held);
+    let left = budget.saturating_sub(held.solve.iterations);
+    if (flat.delta_face_max <= FLAT_QUAD && flat.delta_face_avg <= FLAT_QUAD_MEAN) || left == 0 {
+        return Ok(held);
+    }
+    let sliding_solver = SolverOptions {
+        max_iterations: left,
+        ..solver.clone()
+    };
+    let sliding = cap_trying(
+        &[SLIDING_TRY],
         walls,
         surface,
         options,
-        solver,
+        &sliding_solver,
         progress,
-    )
+    )?;
+    // Not clean, the sliding try leaves the honeycomb as it was: flatter than that, the held
+    // quads are kept.
+    let flatter = planarity(&sliding).delta_face_max < flat.delta_face_max;
+    let (mut kept, other) = if flatter {
+        (sliding, held)
+    } else {
+        (held, sliding)
+    };
+    kept.solve.iterations += other.solve.iterations;
+    Ok(kept)
 }
 
-/// [`cap`] of the honeycomb, its connectivity and its wall normals, with the capping tried at
-/// these closeness weights in turn.
+/// [`cap`] of the honeycomb, its connectivity and its wall normals, with these tries in turn.
 fn cap_trying(
-    closeness_weights: &[f64],
+    tries: &[CappingTry],
     (honeycomb, conn, normals): (&Honeycomb, &Connectivity, &[Vec3]),
     surface: &PolyMesh,
     options: &QuadOptions,
@@ -171,17 +249,34 @@ fn cap_trying(
             convex && along(vertices, e) * along(&normalized.vertices, e) > 0.0
         })
     };
+    // Distances in the mean edge length as it is: the capping moves the vertices along S too.
     let is_clean = |vertices: &[Vec3]| {
         let farthest = (vertices.iter())
             .map(|&p| surface.closest_point(p).distance)
             .fold(0.0, f64::max);
-        farthest <= MAX_DISTANCE_FROM_S && walls_kept(vertices)
+        let mean_edge = (conn.edges.iter())
+            .map(|&[a, b]| (vertices[a] - vertices[b]).norm())
+            .sum::<f64>()
+            / conn.num_edges().max(1) as f64;
+        farthest <= MAX_DISTANCE_FROM_S * mean_edge && walls_kept(vertices)
     };
     let mut iterations = 0;
-    let mut tries = closeness_weights.iter().peekable();
-    while let Some(&closeness) = tries.next() {
-        let problem =
-            CappingProblem::build(&normalized, conn, normals, &surface, options, closeness);
+    let mut tries = tries.iter().peekable();
+    while let Some(&this) = tries.next() {
+        let problem = CappingProblem::build(
+            &normalized,
+            conn,
+            (normals, axes, depth),
+            &surface,
+            options,
+            this,
+        );
+        let sliding = SolverOptions {
+            eps: SLIDING_EPS,
+            eps_min: SLIDING_EPS,
+            ..solver.clone()
+        };
+        let solver = if this.sliding { &sliding } else { solver };
         let (mut x, cover) = (problem.x, problem.cover);
         let mut projection =
             GuidedProjection::with_positions(x.len(), problem.families, Some(&problem.positions))?;
@@ -199,12 +294,24 @@ fn cap_trying(
             [m.delta_face_max, m.delta_face_avg]
         };
         let mut before = planarity(&x);
+        // A sliding try may stray after it was clean: its flattest clean iterate is kept.
+        let mut flattest: Option<([f64; 2], Vec<Vec3>)> = None;
         while state.iterations() < left {
             let Some(info) = projection.iterate(&mut x, &mut state, solver)? else {
                 break;
             };
             progress(&info);
             let after = planarity(&x);
+            if this.sliding && flattest.as_ref().is_none_or(|(f, _)| after < *f) {
+                let vertices = vertices_of(&x);
+                if is_clean(&vertices) {
+                    flattest = Some((after, vertices));
+                    // Every quad flat enough: the firming has nothing left to do.
+                    if after[0] <= FLAT_ENOUGH {
+                        break;
+                    }
+                }
+            }
             if (0..2).all(|k| (after[k] - before[k]).abs() < SETTLED_PLANARITY) {
                 break;
             }
@@ -215,8 +322,11 @@ fn cap_trying(
         }
         let mut solve = projection.report(&x, state, solver);
         iterations += solve.iterations;
-        let vertices = vertices_of(&x);
-        let clean = is_clean(&vertices);
+        let mut vertices = vertices_of(&x);
+        let mut clean = is_clean(&vertices);
+        if let Some((_, kept)) = flattest.filter(|_| !clean) {
+            (vertices, clean) = (kept, true);
+        }
         let last = tries.peek().is_none() || iterations >= solver.max_iterations;
         if last || clean {
             solve.iterations = iterations;
@@ -246,10 +356,10 @@ impl<'a> CappingProblem<'a> {
     pub fn build(
         normalized: &PolyMesh,
         conn: &Connectivity,
-        normals: &[Vec3],
+        (normals, axes, depth): (&[Vec3], &[Vec3], f64),
         surface: &'a Surface,
         options: &QuadOptions,
-        closeness: f64,
+        this: CappingTry,
     ) -> CappingProblem<'a> {
         let cover = QuadCover::new(normalized, conn, options.pattern, options.direction);
         let layout = Layout::new(normalized.vertices.len(), 0);
@@ -270,9 +380,30 @@ impl<'a> CappingProblem<'a> {
         let dummies = MinEdgeLength::initial_dummies_for(&conn.edges, &least, &normalized.vertices);
         let dummy_start = x.len();
         x.extend(dummies);
+        let hold = if this.sliding {
+            SLIDING_HOLD
+        } else {
+            HOLD_WEIGHT
+        };
         let mut families = kept_wall_families(
-            layout, normalized, conn, normals, surface, closeness, FIRM_PAST,
+            layout,
+            normalized,
+            (conn, normals),
+            surface,
+            (this.closeness, FIRM_PAST),
+            hold,
         );
+        if this.sliding {
+            families.push(Box::new(WallConvexity::new(
+                layout,
+                &normalized.vertices,
+                &conn.edges,
+                normals,
+                axes,
+                depth,
+                CONVEXITY_WEIGHT,
+            )));
+        }
         families.push(Box::new(MinEdgeLength::with_lengths(
             layout,
             conn.edges.clone(),
@@ -285,13 +416,18 @@ impl<'a> CappingProblem<'a> {
             num_quads: cover.quads.len(),
             weight: 1.0,
         }));
-        families.push(Box::new(QuadPlanarity {
+        let planarity = QuadPlanarity {
             layout,
             block,
             quads: cover.quads.clone(),
             sides: SIDES.to_vec(),
             weight: options.w_cons_faces,
-        }));
+        };
+        if this.sliding {
+            families.push(Box::new(BoundedPlanarity::new(planarity, FLAT_ENOUGH)));
+        } else {
+            families.push(Box::new(planarity));
+        }
         if options.w_fair_zigzag > 0.0 && !cover.zigzag_runs.is_empty() {
             families.push(Box::new(ZigzagFairness {
                 layout,
@@ -376,7 +512,16 @@ mod tests {
         let options = QuadOptions::default();
         let walls = (&honeycomb, &conn, normals.as_slice());
         let capped = cap_trying(
-            &[1e-3, 3.0],
+            &[
+                CappingTry {
+                    closeness: 1e-3,
+                    sliding: false,
+                },
+                CappingTry {
+                    closeness: 3.0,
+                    sliding: false,
+                },
+            ],
             walls,
             surface.source_mesh(),
             &options,

@@ -161,10 +161,11 @@ fn alternating_quads_on_a_curved_roof() {
 /// every figure from the written meshes. The capping keeps omega and delta at the honeycomb's,
 /// every vertex within 0.1 mean edge lengths of S and no wall crossed; the quads come out no
 /// less planar than on the honeycomb, within 0.01 (max) and 0.004 (mean) where the cover's
-/// pattern allows it. On the wave both patterned covers keep most of the honeycomb's
+/// pattern allows it. On the wave the alternating cover keeps most of the honeycomb's
 /// non-planarity (the report's `capping` says what was gained): its principal directions turn,
-/// and one lattice direction follows them only on average; the flattest cover, whose cells
-/// pick their own diagonals, meets the floors there. The zigzag on the saddle is flat because
+/// and one lattice direction follows them only on average; the zigzag cover meets the floors
+/// there only with its vertices sliding along S (the held tries leave a worst quad of 0.011),
+/// and so does the flattest cover, whose cells pick their own diagonals. The zigzag on the saddle is flat because
 /// its lattice follows S's principal directions (see
 /// `zigzag_quads_follow_the_principal_directions`), and so is the flattest cover on it.
 #[test]
@@ -177,7 +178,7 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
         (Shape::Saddle, QuadPattern::Alternating, true),
         (Shape::Saddle, QuadPattern::Zigzag, true),
         (Shape::Wave, QuadPattern::Alternating, false),
-        (Shape::Wave, QuadPattern::Zigzag, false),
+        (Shape::Wave, QuadPattern::Zigzag, true),
         (Shape::Wave, QuadPattern::Flattest, true),
         (Shape::Saddle, QuadPattern::Flattest, true),
     ];
@@ -210,8 +211,8 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
         assert!(m.closeness_max <= 0.1 + 1e-9, "{}", m.closeness_max);
         assert!(faces.delta_face_max <= capping.delta_face_max_before + 1e-9);
         assert!(faces.delta_face_avg < capping.delta_face_avg_before);
-        // All the capping's tries share the default budget of 20 iterations.
-        assert!(capping.iterations <= 20, "{capping:?}");
+        // All the capping's tries share the default budget of 60 iterations.
+        assert!(capping.iterations <= 60, "{capping:?}");
         if floors {
             assert!(faces.delta_face_max <= 0.01, "{faces:?}");
             assert!(faces.delta_face_avg <= 0.004, "{faces:?}");
@@ -267,41 +268,47 @@ fn zigzag_quads_follow_the_principal_directions() {
 
 /// Where the grid along S's principal directions leaves a quad less flat than 0.01, the
 /// pipeline lays the boundary's grid too and keeps the zigzag cover whose worst quad is
-/// flatter, saying which (the wave's principal directions turn, and at 750 cells the
-/// boundary's grid is the flatter one at its worst).
+/// flatter, saying which; where it does not, that grid is kept alone. On the wave, whose
+/// principal directions turn, at 750 and 1500 cells.
 #[test]
 fn a_zigzag_cover_keeps_the_grid_with_the_flatter_worst_quad() {
     use crate::generate::{design_surface, Shape};
     use crate::init::{Align, LatticeFollows};
     let surface = Surface::new(design_surface(Shape::Wave)).unwrap();
-    let run = |align| {
-        let (out, faces, follows) = piped_quads(&surface, QuadPattern::Zigzag, align);
-        (faces, follows, out.report.notes.clone())
-    };
-    let (chosen, follows, notes) = run(None);
-    let (along, along_follows, _) = run(Some(Align::Curvature));
-    let (across, _, _) = run(Some(Align::Boundary));
-    assert_eq!(along_follows, LatticeFollows::Curvature);
-    assert!(along.delta_face_max > 0.01, "{along:?}");
-    let best = along.delta_face_max.min(across.delta_face_max);
-    assert!((chosen.delta_face_max - best).abs() < 1e-12, "{chosen:?}");
-    let kept = if across.delta_face_max < along.delta_face_max {
-        LatticeFollows::Boundary
-    } else {
-        LatticeFollows::Curvature
-    };
-    assert_eq!(follows, kept);
-    assert!(
-        notes
-            .iter()
-            .any(|n| n.starts_with("zigzag quads: this is the grid")),
-        "{notes:?}"
-    );
+    for cells in [750, 1500] {
+        let run = |align| {
+            let (out, faces, follows) = piped_quads_at(&surface, QuadPattern::Zigzag, align, cells);
+            (faces, follows, out.report.notes.clone())
+        };
+        let (chosen, follows, notes) = run(None);
+        let (along, along_follows, _) = run(Some(Align::Curvature));
+        assert_eq!(along_follows, LatticeFollows::Curvature);
+        let second_grid = (notes.iter()).any(|n| n.starts_with("zigzag quads: this is the grid"));
+        println!("{cells}: chosen {chosen:?}, along {along:?}, {notes:?}");
+        if along.delta_face_max <= 0.01 {
+            assert_eq!(follows, LatticeFollows::Curvature);
+            assert!((chosen.delta_face_max - along.delta_face_max).abs() < 1e-12);
+            assert!(!second_grid, "{notes:?}");
+            continue;
+        }
+        let (across, _, _) = run(Some(Align::Boundary));
+        let best = along.delta_face_max.min(across.delta_face_max);
+        assert!((chosen.delta_face_max - best).abs() < 1e-12, "{chosen:?}");
+        let kept = if across.delta_face_max < along.delta_face_max {
+            LatticeFollows::Boundary
+        } else {
+            LatticeFollows::Curvature
+        };
+        assert_eq!(follows, kept);
+        assert!(second_grid, "{notes:?}");
+    }
 }
 
 /// A folded plate (a roof of flat strips meeting at straight creases): a cell that straddles a
 /// crease finds no flat diagonal of its own, while the zigzag's straight polylines along the
-/// creases cap flat. The flattest cover, set against the zigzag, keeps whichever caps flatter.
+/// creases cap flat. The flattest cover meets the floors all the same: where its held tries
+/// leave a quad above them, the vertices slide along S within their walls until every quad
+/// is flat enough (else it would be set against the zigzag, and the flatter kept).
 #[test]
 fn a_flattest_cover_is_as_flat_as_the_zigzag_on_a_folded_plate() {
     let (mut vertices, triangles) = crate::init::lifted_grid(80, |_, _| 0.0);
@@ -315,13 +322,18 @@ fn a_flattest_cover_is_as_flat_as_the_zigzag_on_a_folded_plate() {
     let (flattest, faces, _) = piped_quads(&surface, QuadPattern::Flattest, None);
     let (_, zigzag, _) = piped_quads(&surface, QuadPattern::Zigzag, None);
     println!("flattest {faces:?}, zigzag {zigzag:?}");
-    assert!(faces.delta_face_max <= zigzag.delta_face_max + 1e-12);
     assert!(faces.delta_face_max <= 0.01 && faces.delta_face_avg <= 0.004);
-    assert!(
-        (flattest.report.notes.iter()).any(|n| n.starts_with("flattest quads: the zigzag")),
-        "{:?}",
-        flattest.report.notes
-    );
+    assert!(zigzag.delta_face_max <= 0.01 && zigzag.delta_face_avg <= 0.004);
+    let capping = flattest
+        .report
+        .quads
+        .as_ref()
+        .unwrap()
+        .capping
+        .clone()
+        .unwrap();
+    // Each cell's own diagonal, on the honeycomb as it stands, is far from flat at a crease.
+    assert!(capping.delta_face_max_before > 0.02, "{capping:?}");
 }
 
 /// `pipeline --quads PATTERN` at 750 cells, its grid along `align` if given (else the
@@ -332,7 +344,17 @@ fn piped_quads(
     pattern: QuadPattern,
     align: Option<crate::init::Align>,
 ) -> (crate::Outcome, FaceMeasures, crate::init::LatticeFollows) {
-    let mut options = crate::PipelineOptions::new(750);
+    piped_quads_at(surface, pattern, align, 750)
+}
+
+/// [`piped_quads`] at `cells` cells.
+fn piped_quads_at(
+    surface: &Surface,
+    pattern: QuadPattern,
+    align: Option<crate::init::Align>,
+    cells: usize,
+) -> (crate::Outcome, FaceMeasures, crate::init::LatticeFollows) {
+    let mut options = crate::PipelineOptions::new(cells);
     options.options.variant = quads_variant(pattern);
     if let Some(align) = align {
         options.init.align = align;
