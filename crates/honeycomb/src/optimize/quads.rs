@@ -191,6 +191,12 @@ pub(crate) fn cap(
         max_iterations: left,
         ..solver.clone()
     };
+    // The slide starts where the held tries left the vertices: on the same walls, flatter.
+    let held_honeycomb = Honeycomb {
+        base: PolyMesh::new(held.vertices.clone(), honeycomb.base.faces.clone()),
+        ..honeycomb.clone()
+    };
+    let walls = (&held_honeycomb, conn, normals);
     let sliding = cap_trying(
         &[SLIDING_TRY],
         walls,
