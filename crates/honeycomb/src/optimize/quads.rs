@@ -205,8 +205,8 @@ pub(crate) fn cap(
         &sliding_solver,
         progress,
     )?;
-    // Not clean, the sliding try leaves the honeycomb as it was: flatter than that, the held
-    // quads are kept.
+    // Not clean, the sliding try leaves the vertices where the held tries did: unless it is
+    // flatter, the held quads are kept.
     let flatter = planarity(&sliding).delta_face_max < flat.delta_face_max;
     let (mut kept, other) = if flatter {
         (sliding, held)
