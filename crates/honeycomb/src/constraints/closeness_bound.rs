@@ -8,19 +8,17 @@
 //! the solve with them.
 
 use super::closeness::Closeness;
+use super::firming::Firming;
 use crate::solve::Constraint;
 use crate::surface::Surface;
 use std::ops::Deref;
-
-/// A vertex's factor grows to at most this: its closeness then weighs as much as a firm one.
-const MAX_FACTOR: f64 = 64.0;
 
 pub struct BoundedCloseness<S> {
     closeness: Closeness<S>,
     /// Distance from S past which a vertex's factor doubles, in the solver's units.
     pub bound: f64,
     /// Per vertex: the factor its two rows are scaled by.
-    factor: Vec<f64>,
+    factor: Firming,
 }
 
 impl<S: Deref<Target = Surface> + Send + Sync> BoundedCloseness<S> {
@@ -30,7 +28,7 @@ impl<S: Deref<Target = Surface> + Send + Sync> BoundedCloseness<S> {
         BoundedCloseness {
             closeness,
             bound,
-            factor: vec![1.0; n],
+            factor: Firming::new(n, 2),
         }
     }
 }
@@ -57,26 +55,19 @@ impl<S: Deref<Target = Surface> + Send + Sync> Constraint for BoundedCloseness<S
         let mut res = vec![0.0; rows];
         let mut jac = vec![0.0; rows * self.closeness.arity()];
         self.closeness.evaluate(x, &mut res, &mut jac);
-        for (v, f) in self.factor.iter_mut().enumerate() {
-            if res[2 * v].hypot(res[2 * v + 1]) > self.bound {
-                *f = (*f * 2.0).min(MAX_FACTOR);
-            }
-        }
+        let bound = self.bound;
+        self.factor
+            .firm(|v| res[2 * v].hypot(res[2 * v + 1]) > bound);
     }
     fn evaluate(&self, x: &[f64], res: &mut [f64], jac: &mut [f64]) {
         self.closeness.evaluate(x, res, jac);
-        let k = self.closeness.arity();
-        for (v, &f) in self.factor.iter().enumerate() {
-            for row in [2 * v, 2 * v + 1] {
-                res[row] *= f;
-                jac[row * k..(row + 1) * k].iter_mut().for_each(|j| *j *= f);
-            }
-        }
+        self.factor.scale(self.closeness.arity(), res, jac);
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::firming::MAX_FACTOR;
     use super::*;
     use crate::constraints::Layout;
     use crate::geometry::Vec3;

@@ -6,6 +6,7 @@ mod closeness;
 mod closeness_bound;
 mod edge_length;
 mod edge_vectors;
+mod firming;
 mod fixed_normals;
 mod held_normals;
 mod layout;

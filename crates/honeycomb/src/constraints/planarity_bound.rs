@@ -8,24 +8,22 @@
 //! turns the fit towards its largest residuals, as reweighted least squares does for a
 //! maximum.
 
+use super::firming::Firming;
 use super::quad_planarity::QuadPlanarity;
 use crate::solve::Constraint;
 use crate::structure::quad_planarity;
-
-/// A quad's factor grows to at most this.
-const MAX_FACTOR: f64 = 64.0;
 
 pub struct BoundedPlanarity {
     planarity: QuadPlanarity,
     /// Planarity past which a quad's factor doubles.
     pub bound: f64,
     /// Per quad: the factor its rows are scaled by.
-    factor: Vec<f64>,
+    factor: Firming,
 }
 
 impl BoundedPlanarity {
     pub fn new(planarity: QuadPlanarity, bound: f64) -> Self {
-        let factor = vec![1.0; planarity.quads.len()];
+        let factor = Firming::new(planarity.quads.len(), planarity.sides.len());
         BoundedPlanarity {
             planarity,
             bound,
@@ -51,26 +49,19 @@ impl Constraint for BoundedPlanarity {
         self.planarity.row_variables(row, vars)
     }
     fn refresh(&mut self, x: &[f64]) {
-        let layout = self.planarity.layout;
-        for (quad, f) in self.planarity.quads.iter().zip(&mut self.factor) {
-            if quad_planarity(quad.map(|v| layout.vertex_at(x, v))) > self.bound {
-                *f = (*f * 2.0).min(MAX_FACTOR);
-            }
-        }
+        let (layout, quads, bound) = (self.planarity.layout, &self.planarity.quads, self.bound);
+        self.factor
+            .firm(|q| quad_planarity(quads[q].map(|v| layout.vertex_at(x, v))) > bound);
     }
     fn evaluate(&self, x: &[f64], res: &mut [f64], jac: &mut [f64]) {
         self.planarity.evaluate(x, res, jac);
-        let (sides, k) = (self.planarity.sides.len(), self.planarity.arity());
-        for (row, r) in res.iter_mut().enumerate() {
-            let f = self.factor[row / sides];
-            *r *= f;
-            jac[row * k..(row + 1) * k].iter_mut().for_each(|j| *j *= f);
-        }
+        self.factor.scale(self.planarity.arity(), res, jac);
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::firming::MAX_FACTOR;
     use super::*;
     use crate::constraints::{Layout, QuadNormalBlock};
     use crate::geometry::Vec3;
@@ -138,6 +129,7 @@ mod tests {
             0.01,
         );
         flat.refresh(&x);
-        assert!(flat.factor.iter().all(|&f| f == 1.0), "{:?}", flat.factor);
+        let factors = flat.factor.factors();
+        assert!(factors.iter().all(|&f| f == 1.0), "{factors:?}");
     }
 }
