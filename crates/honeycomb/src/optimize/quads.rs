@@ -109,9 +109,11 @@ const HELD_TRIES: [CappingTry; 4] = [
 ];
 
 /// Where the held quads miss the floors: where S twists, a quad's planarity needs its cell
-/// to shift along S within its walls, which only a slide gives.
+/// to shift along S within its walls, which only a slide gives. Its closeness is firm from the
+/// start: with nothing else holding them, loose vertices wander off S and back, and on the way
+/// their walls cross.
 const SLIDING_TRY: CappingTry = CappingTry {
-    closeness: 0.03,
+    closeness: 1.0,
     sliding: true,
 };
 
@@ -126,7 +128,7 @@ const SLIDING_HOLD: f64 = 0.003;
 const FLAT_ENOUGH: f64 = 0.008;
 /// A sliding try keeps its regularization at this instead of letting it shrink: the slides
 /// along S are otherwise held by nothing but it, and longer steps cross walls.
-const SLIDING_EPS: f64 = 1e-3;
+const SLIDING_EPS: f64 = 1e-2;
 /// Weight of the walls' convexity in a sliding try: above the planarity's firmest.
 const CONVEXITY_WEIGHT: f64 = 100.0;
 /// Where a vertex starts to firm up, in mean edge lengths: short of `MAX_DISTANCE_FROM_S`,
