@@ -4,7 +4,7 @@
 
 pub use crate::structure::QuadPattern;
 
-use super::kept_walls::{kept_wall_families, HOLD_WEIGHT};
+use super::kept_walls::{kept_wall_families, onto_kept_walls, HOLD_WEIGHT};
 use super::variants::check_weight;
 use super::Frame;
 use crate::constraints::{
@@ -186,8 +186,13 @@ pub(crate) fn cap(
     let planarity = |c: &Capped| face_measures(&c.vertices, &c.cover.quads);
     let flat = planarity(&held);
     let left = budget.saturating_sub(held.solve.iterations);
+    // The kept walls are weighted rows: the capping's vertices are put on them exactly.
+    let on_walls = |mut c: Capped| {
+        c.vertices = onto_kept_walls(&c.vertices, &conn.edges, normals);
+        c
+    };
     if (flat.delta_face_max <= FLAT_QUAD && flat.delta_face_avg <= FLAT_QUAD_MEAN) || left == 0 {
-        return Ok(held);
+        return Ok(on_walls(held));
     }
     let sliding_solver = SolverOptions {
         max_iterations: left,
@@ -216,7 +221,7 @@ pub(crate) fn cap(
         (held, sliding)
     };
     kept.solve.iterations += other.solve.iterations;
-    Ok(kept)
+    Ok(on_walls(kept))
 }
 
 /// [`cap`] of the honeycomb, its connectivity and its wall normals, with these tries in turn.

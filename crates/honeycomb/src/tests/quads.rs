@@ -204,7 +204,9 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
             out.report.iterations_total
         );
         assert!(out.is_honeycomb(), "{shape:?} {pattern:?}");
-        assert!(m.omega_max_deg < 0.05 && m.delta_max < 1e-5, "{m:?}");
+        // The kept walls hold exactly: the node angles are the honeycomb's, far inside the
+        // 0.05 degrees and 1e-5 asked.
+        assert!(m.omega_max_deg < 1e-5 && m.delta_max < 1e-10, "{m:?}");
         assert_eq!(m.nonconvex_walls, 0);
         assert!(m.closeness_max <= 0.1 + 1e-9, "{}", m.closeness_max);
         assert!(faces.delta_face_max <= capping.delta_face_max_before + 1e-9);
