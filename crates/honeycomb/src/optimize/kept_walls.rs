@@ -133,25 +133,17 @@ pub(crate) fn kept_wall_families<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::generate::{design_surface, Shape};
+    use crate::generate::Shape;
     use crate::structure::{measure, node_axes};
-    use crate::{pipeline, PipelineOptions, Progress};
+    use crate::tests::default_honeycomb;
 
     /// Vertices knocked off their walls come back onto them exactly (the walls' own rows and
     /// the node angles measured from the realized walls both to roundoff), by a move no longer
     /// than the knock: the nearest such vertices, where the honeycomb's own are one choice.
     #[test]
     fn knocked_vertices_come_back_onto_their_walls() {
-        let surface = Surface::new(design_surface(Shape::Wave)).unwrap();
-        let out = pipeline(
-            &surface,
-            &PipelineOptions::new(300),
-            &mut Progress::silent(),
-        )
-        .unwrap();
-        let h = &out.honeycomb;
-        let conn = crate::mesh::validate_base_mesh(&h.base).unwrap();
-        let normals = realized_normals(h, &conn);
+        let (surface, h, conn) = default_honeycomb(Shape::Wave, 300);
+        let normals = realized_normals(&h, &conn);
         let unit = h.base.mean_edge_length();
         // A deterministic knock of about a thousandth of an edge per coordinate.
         let knock = |i: usize| ((i as f64 * 12.9898).sin() * 43758.5453).fract() * 1e-3 * unit;

@@ -505,18 +505,9 @@ mod tests {
     /// enough along their axes to cross one.
     #[test]
     fn a_try_that_crossed_a_wall_leaves_the_budget_to_the_next() {
-        use crate::generate::{design_surface, Shape};
-        use crate::{pipeline, PipelineOptions, Progress};
-        let surface = Surface::new(design_surface(Shape::Wave)).unwrap();
-        let out = pipeline(
-            &surface,
-            &PipelineOptions::new(300),
-            &mut Progress::silent(),
-        )
-        .unwrap();
-        let mut honeycomb = out.honeycomb.clone();
+        let (surface, mut honeycomb, conn) =
+            crate::tests::default_honeycomb(crate::generate::Shape::Wave, 300);
         honeycomb.thickness = 3.0 * honeycomb.base.mean_edge_length();
-        let conn = crate::mesh::validate_base_mesh(&honeycomb.base).unwrap();
         let normals = super::super::kept_walls::realized_normals(&honeycomb, &conn);
         let solver = SolverOptions {
             max_iterations: 6,

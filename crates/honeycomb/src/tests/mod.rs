@@ -10,8 +10,13 @@ mod quads;
 mod shading;
 mod variants;
 
+use crate::generate::{design_surface, Shape};
+use crate::mesh::{validate_base_mesh, Connectivity};
 use crate::optimize::{OptimizeOptions, Weights};
 use crate::solve::SolverOptions;
+use crate::structure::Honeycomb;
+use crate::surface::Surface;
+use crate::{pipeline, PipelineOptions, Progress};
 use std::path::PathBuf;
 
 /// The guided projection with the node axes guided towards S's normals and no opposite-wall
@@ -35,4 +40,15 @@ fn guided_to_the_normals() -> OptimizeOptions {
 fn shared_data() -> Option<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
     dir.is_dir().then_some(dir)
+}
+
+/// The default pipeline's honeycomb (walls across S) of about `cells` cells on a built-in
+/// surface, with the surface and the honeycomb's connectivity: where the tests of what comes
+/// after the solve (capping, deeper walls) start.
+pub(crate) fn default_honeycomb(shape: Shape, cells: usize) -> (Surface, Honeycomb, Connectivity) {
+    let surface = Surface::new(design_surface(shape)).unwrap();
+    let options = PipelineOptions::new(cells);
+    let out = pipeline(&surface, &options, &mut Progress::silent()).unwrap();
+    let conn = validate_base_mesh(&out.honeycomb.base).unwrap();
+    (surface, out.honeycomb, conn)
 }

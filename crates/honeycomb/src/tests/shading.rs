@@ -116,15 +116,7 @@ fn a_sun_path_halves_the_days_mean_share() {
 /// the ends of a wall that would cross are kept shallower.
 #[test]
 fn deepened_walls_stay_planar_and_uncrossed() {
-    let surface = Surface::new(design_surface(Shape::Dome)).unwrap();
-    let out = pipeline(
-        &surface,
-        &PipelineOptions::new(300),
-        &mut Progress::silent(),
-    )
-    .unwrap();
-    let h = &out.honeycomb;
-    let conn = validate_base_mesh(&h.base).unwrap();
+    let (surface, h, conn) = super::default_honeycomb(Shape::Dome, 300);
     let unit = h.base.mean_edge_length();
     // So deep that the axes, which lean together over the dome, cross many walls.
     let asked = 8.0 * unit;
