@@ -1,6 +1,7 @@
 //! `report.json`: the Figure 16 row of a run and everything needed to judge it.
 
 use crate::analysis::ShadingReport;
+use crate::error::rounded;
 use crate::optimize::{Optimized, WallNormals, Weights};
 use crate::pipeline::Walls;
 use crate::solve::{FamilyResidual, IterationInfo};
@@ -105,6 +106,32 @@ pub struct Capping {
     pub iterations: usize,
     pub delta_face_max_before: f64,
     pub delta_face_avg_before: f64,
+    /// The largest move of a vertex along S (across S's normal where it ended), in mean edge
+    /// lengths: how far the cells shifted within their walls.
+    pub along_s_max: f64,
+    /// The edge lengths' cv before (after is `edge_length_cv`): how the cells re-shaped.
+    pub edge_length_cv_before: f64,
+}
+
+impl Capping {
+    /// A note stating the trade: the quads' planarity gained for the vertices' moves off S
+    /// (`closeness_max`) and along it.
+    pub fn trade(&self, after: &FaceMeasures, closeness_max: f64, cv: f64) -> String {
+        format!(
+            "capped in {} iterations: the worst quad {} -> {} and the mean {} -> {} from \
+             planar, for vertices up to {} mean edge lengths off S and moved up to {} along it \
+             (within their walls), the edge cv {} -> {}",
+            self.iterations,
+            rounded(self.delta_face_max_before, 4),
+            rounded(after.delta_face_max, 4),
+            rounded(self.delta_face_avg_before, 4),
+            rounded(after.delta_face_avg, 4),
+            rounded(closeness_max, 3),
+            rounded(self.along_s_max, 3),
+            rounded(self.edge_length_cv_before, 3),
+            rounded(cv, 3),
+        )
+    }
 }
 
 impl Report {
@@ -167,7 +194,13 @@ impl Report {
     /// This report (of the honeycomb `capped` was capped from, `before` its quads' planarity
     /// then) turned into the capped one's, measured `m` from its meshes; the capping solve's
     /// iterations (`capped.solve`'s) count in.
-    pub fn capped(&mut self, capped: &Optimized, m: &Measures, before: &FaceMeasures) {
+    pub fn capped(
+        &mut self,
+        capped: &Optimized,
+        m: &Measures,
+        before: &FaceMeasures,
+        (along_s_max, edge_length_cv_before): (f64, f64),
+    ) {
         let s = &capped.solve;
         let (Some(mesh), Some(cover)) = (&capped.quads, &capped.quad_cover) else {
             return;
@@ -181,6 +214,8 @@ impl Report {
                 iterations: s.iterations,
                 delta_face_max_before: before.delta_face_max,
                 delta_face_avg_before: before.delta_face_avg,
+                along_s_max,
+                edge_length_cv_before,
             }),
         });
     }

@@ -14,7 +14,8 @@ use crate::pipeline::{pipeline as run_strategy, solve_base, uncross, Pipelined, 
 use crate::reciprocal::{AcrossOptions, AxisTargets, Turn, SHADING_TURNS};
 use crate::report::Report;
 use crate::structure::{
-    axes_measures, face_measures, measure, QuadPattern, FLAT_QUAD, FLAT_QUAD_MEAN,
+    axes_measures, face_measures, largest_move_along, measure, QuadPattern, FLAT_QUAD,
+    FLAT_QUAD_MEAN,
 };
 use crate::surface::Surface;
 use crate::Vec3;
@@ -310,21 +311,29 @@ fn cap_with_cover(
         options.thickness,
     );
     let cover = (capped.quad_cover.as_ref()).expect("a capped honeycomb has its cover");
-    report.capped(&capped, &measures, &face_measures(&uncapped, &cover.quads));
-    report.notes.extend(thinner);
-    report.notes.extend(flatter_pattern(&report));
-    // The capping works in a frame of its own: the way back leaves roundoff.
     let unit = capped.honeycomb.base.mean_edge_length();
-    let unmoved = (capped.honeycomb.base.vertices.iter().zip(&uncapped))
-        .all(|(p, q)| (*p - *q).norm() <= 1e-9 * unit);
+    let after = &capped.honeycomb.base.vertices;
+    let along_s = largest_move_along(surface, &uncapped, after, unit);
+    let cv_before = report.measures.edge_length_cv;
+    let before = face_measures(&uncapped, &cover.quads);
+    report.capped(&capped, &measures, &before, (along_s, cv_before));
+    report.notes.extend(thinner);
+    // The capping works in a frame of its own: the way back leaves roundoff.
+    let unmoved = (after.iter().zip(&uncapped)).all(|(p, q)| (*p - *q).norm() <= 1e-9 * unit);
     if unmoved {
         report.notes.push(
             "no capping step within its iterations kept every vertex within 0.1 mean edge \
-             lengths of S without crossing a wall or turning an edge back; the quads cap the \
-             honeycomb as it was"
+             lengths of S and the cells as even without crossing a wall or turning an edge \
+             back; the quads cap the honeycomb as it was"
                 .into(),
         );
+    } else if let Some(q) = &report.quads {
+        let capping = q.capping.as_ref().expect("a capped report has its capping");
+        let m = &report.measures;
+        let trade = capping.trade(&q.faces, m.closeness_max, m.edge_length_cv);
+        report.notes.push(trade);
     }
+    report.notes.extend(flatter_pattern(&report));
     Ok((capped, report))
 }
 

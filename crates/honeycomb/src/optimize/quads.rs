@@ -17,7 +17,9 @@ use crate::mesh::{Connectivity, PolyMesh};
 use crate::solve::{
     Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
 };
-use crate::structure::{face_measures, is_convex, Honeycomb, QuadCover, FLAT_QUAD, FLAT_QUAD_MEAN};
+use crate::structure::{
+    edge_length_cv, face_measures, is_convex, Honeycomb, QuadCover, FLAT_QUAD, FLAT_QUAD_MEAN,
+};
 use crate::surface::Surface;
 
 #[derive(Clone, Debug)]
@@ -123,6 +125,10 @@ const HELD_SHARE: f64 = 1.0 / 3.0;
 /// The hold along S of a sliding try: enough to pin the vertices' tangential moves that
 /// nothing else asks for, not the planarity's.
 const SLIDING_HOLD: f64 = 0.003;
+/// How uneven a capping may leave the cells (edge-length cv): as even as a honeycomb is asked
+/// to be, or the honeycomb's own cv and a little more where that is higher.
+const EVEN_CELLS: f64 = 0.12;
+const CV_ALLOWANCE: f64 = 0.01;
 /// The quads a sliding try firms up (see `BoundedPlanarity`): short of the floor asked of a
 /// cover's worst quad (0.01), since one past it takes a few steps to come down.
 const FLAT_ENOUGH: f64 = 0.008;
@@ -262,16 +268,25 @@ fn cap_trying(
             convex && along(vertices, e) * along(&normalized.vertices, e) > 0.0
         })
     };
+    // Nor may the cells re-shape past what a honeycomb is asked: the vertices slide along their
+    // walls, and slides that flatten the quads where S twists stretch some edges to several
+    // mean lengths.
+    let lengths = |p: &[Vec3]| -> Vec<f64> {
+        (conn.edges.iter())
+            .map(|&[a, b]| (p[a] - p[b]).norm())
+            .collect()
+    };
+    let uneven = EVEN_CELLS.max(edge_length_cv(&lengths(&normalized.vertices)) + CV_ALLOWANCE);
     // Distances in the mean edge length as it is: the capping moves the vertices along S too.
     let is_clean = |vertices: &[Vec3]| {
         let farthest = (vertices.iter())
             .map(|&p| surface.closest_point(p).distance)
             .fold(0.0, f64::max);
-        let mean_edge = (conn.edges.iter())
-            .map(|&[a, b]| (vertices[a] - vertices[b]).norm())
-            .sum::<f64>()
-            / conn.num_edges().max(1) as f64;
-        farthest <= MAX_DISTANCE_FROM_S * mean_edge && walls_kept(vertices)
+        let lengths = lengths(vertices);
+        let mean_edge = lengths.iter().sum::<f64>() / lengths.len().max(1) as f64;
+        farthest <= MAX_DISTANCE_FROM_S * mean_edge
+            && edge_length_cv(&lengths) <= uneven
+            && walls_kept(vertices)
     };
     let mut iterations = 0;
     let mut tries = tries.iter().peekable();

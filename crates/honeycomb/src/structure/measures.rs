@@ -170,6 +170,18 @@ pub fn quad_planarity([p0, p1, p2, p3]: [Vec3; 4]) -> f64 {
     segment_distance(p0, p2, p1, p3) / mean.max(1e-300)
 }
 
+/// The largest move along S from `before` to `after` (the same vertices), in units of `unit`:
+/// each move less its part along S's normal where the vertex ended.
+pub fn largest_move_along(surface: &Surface, before: &[Vec3], after: &[Vec3], unit: f64) -> f64 {
+    (before.iter().zip(after))
+        .map(|(&p, &q)| {
+            let n = surface.normal_at(q);
+            let d = q - p;
+            (d - n * d.dot(n)).norm() / unit
+        })
+        .fold(0.0, f64::max)
+}
+
 pub fn measure(h: &Honeycomb, surface: &Surface) -> Measures {
     let nv = h.base.vertices.len();
     let mut neighbours = vec![Vec::new(); nv];

@@ -9,7 +9,7 @@ mod variant_measures;
 
 pub(crate) use axes::node_axes;
 pub use honeycomb::{Honeycomb, StructureJson};
-pub use measures::{edge_length_cv, measure, quad_planarity, Measures, Spread};
+pub use measures::{edge_length_cv, largest_move_along, measure, quad_planarity, Measures, Spread};
 pub(crate) use measures::{is_convex, line_angle_deg, per_wall_worse_end, thickest_uncrossed};
 pub(crate) use quad_cover::QuadCover;
 pub use quad_cover::QuadPattern;

@@ -171,16 +171,16 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
     use crate::generate::{design_surface, Shape};
     use crate::{pipeline, PipelineOptions, Progress};
     let cases = [
-        (Shape::Dome, QuadPattern::Zigzag),
-        (Shape::Cylinder, QuadPattern::Alternating),
-        (Shape::Saddle, QuadPattern::Alternating),
-        (Shape::Saddle, QuadPattern::Zigzag),
-        (Shape::Wave, QuadPattern::Alternating),
-        (Shape::Wave, QuadPattern::Zigzag),
-        (Shape::Wave, QuadPattern::Flattest),
-        (Shape::Saddle, QuadPattern::Flattest),
+        (Shape::Dome, QuadPattern::Zigzag, true),
+        (Shape::Cylinder, QuadPattern::Alternating, true),
+        (Shape::Saddle, QuadPattern::Alternating, true),
+        (Shape::Saddle, QuadPattern::Zigzag, true),
+        (Shape::Wave, QuadPattern::Alternating, false),
+        (Shape::Wave, QuadPattern::Zigzag, false),
+        (Shape::Wave, QuadPattern::Flattest, true),
+        (Shape::Saddle, QuadPattern::Flattest, true),
     ];
-    for (shape, pattern) in cases {
+    for (shape, pattern, floors) in cases {
         let surface = Surface::new(design_surface(shape)).unwrap();
         let mut options = PipelineOptions::new(750);
         options.options.variant = quads_variant(pattern);
@@ -213,11 +213,21 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
         assert!(faces.delta_face_avg < capping.delta_face_avg_before);
         // All the capping's tries share the default budget of 60 iterations.
         assert!(capping.iterations <= 60, "{capping:?}");
-        assert!(faces.delta_face_max <= 0.01, "{faces:?}");
-        assert!(faces.delta_face_avg <= 0.004, "{faces:?}");
-        // Within the floors, no note points to another cover.
+        if floors {
+            assert!(faces.delta_face_max <= 0.01, "{faces:?}");
+            assert!(faces.delta_face_avg <= 0.004, "{faces:?}");
+        }
+        // The cells re-shape no further than a honeycomb is asked to be even.
+        assert!(m.edge_length_cv <= 0.12, "{}", m.edge_length_cv);
+        // A patterned cover short of the floors points to the flattest one.
         let hint = (out.report.notes.iter()).any(|n| n.contains("--quads flattest"));
-        assert!(!hint, "{:?}", out.report.notes);
+        let short = faces.delta_face_max > 0.01 || faces.delta_face_avg > 0.004;
+        assert_eq!(
+            hint,
+            short && pattern != QuadPattern::Flattest,
+            "{:?}",
+            out.report.notes
+        );
         // Walls across S: the capped honeycomb's axes lean from S's normals as the plain one's.
         assert!(
             m.axis_normal_deg.mean < m.parallel_baseline_deg.mean,
