@@ -8,60 +8,31 @@
 //! the solve with them.
 
 use super::closeness::Closeness;
-use super::firming::Firming;
+use super::firming::{Firmed, Groups};
 use crate::solve::Constraint;
 use crate::surface::Surface;
 use std::ops::Deref;
 
-pub struct BoundedCloseness<S> {
-    closeness: Closeness<S>,
-    /// Distance from S past which a vertex's factor doubles, in the solver's units.
-    pub bound: f64,
-    /// Per vertex: the factor its two rows are scaled by.
-    factor: Firming,
-}
+/// Closeness at its weight for vertices within `bound` of S (`BoundedCloseness::new(closeness,
+/// bound)`), firming up past it.
+pub type BoundedCloseness<S> = Firmed<Closeness<S>>;
 
-impl<S: Deref<Target = Surface> + Send + Sync> BoundedCloseness<S> {
-    /// Closeness at `weight` for vertices within `bound` of S.
-    pub fn new(closeness: Closeness<S>, bound: f64) -> Self {
-        let n = closeness.layout.num_vertices;
-        BoundedCloseness {
-            closeness,
-            bound,
-            factor: Firming::new(n, 2),
-        }
+/// A vertex's two rows; past the bound where their distance is.
+impl<S: Deref<Target = Surface> + Send + Sync> Groups for Closeness<S> {
+    fn rows_per_group(&self) -> usize {
+        2
     }
-}
-
-impl<S: Deref<Target = Surface> + Send + Sync> Constraint for BoundedCloseness<S> {
-    fn name(&self) -> &str {
-        "closeness"
+    fn num_groups(&self) -> usize {
+        self.layout.num_vertices
     }
-    fn weight(&self) -> f64 {
-        self.closeness.weight
-    }
-    fn num_rows(&self) -> usize {
-        self.closeness.num_rows()
-    }
-    fn arity(&self) -> usize {
-        self.closeness.arity()
-    }
-    fn row_variables(&self, row: usize, vars: &mut [usize]) {
-        self.closeness.row_variables(row, vars)
-    }
-    fn refresh(&mut self, x: &[f64]) {
-        self.closeness.refresh(x);
-        let rows = self.closeness.num_rows();
+    fn past(&self, x: &[f64], bound: f64) -> Vec<bool> {
+        let rows = self.num_rows();
         let mut res = vec![0.0; rows];
-        let mut jac = vec![0.0; rows * self.closeness.arity()];
-        self.closeness.evaluate(x, &mut res, &mut jac);
-        let bound = self.bound;
-        self.factor
-            .firm(|v| res[2 * v].hypot(res[2 * v + 1]) > bound);
-    }
-    fn evaluate(&self, x: &[f64], res: &mut [f64], jac: &mut [f64]) {
-        self.closeness.evaluate(x, res, jac);
-        self.factor.scale(self.closeness.arity(), res, jac);
+        let mut jac = vec![0.0; rows * self.arity()];
+        self.evaluate(x, &mut res, &mut jac);
+        (0..self.num_groups())
+            .map(|v| res[2 * v].hypot(res[2 * v + 1]) > bound)
+            .collect()
     }
 }
 

@@ -2,7 +2,9 @@
 //! group past a bound, up to a cap, and never shrinks. The factors only grow, so they settle
 //! once every group is within its bound (or at the cap), and the solve with them; meanwhile
 //! the fit turns towards the groups that stay past, as reweighted least squares does for a
-//! maximum.
+//! maximum. [`Firmed`] is a family with its rows so firmed up.
+
+use crate::solve::Constraint;
 
 /// A group's factor grows to at most this: its rows then weigh as much as firm ones.
 pub(crate) const MAX_FACTOR: f64 = 64.0;
@@ -44,5 +46,65 @@ impl Firming {
     #[cfg(test)]
     pub fn factors(&self) -> &[f64] {
         &self.factor
+    }
+}
+
+/// A family whose rows come in groups (a vertex's, a quad's) and that can tell which groups are
+/// past a bound at an iterate.
+pub(crate) trait Groups {
+    fn rows_per_group(&self) -> usize;
+    fn num_groups(&self) -> usize;
+    /// Per group: whether it is past `bound` at `x` (after `refresh` at `x`).
+    fn past(&self, x: &[f64], bound: f64) -> Vec<bool>;
+}
+
+/// The family `inner` with each group's rows scaled by a [`Firming`] factor that doubles at
+/// every refresh that finds the group past `bound`.
+pub struct Firmed<C> {
+    inner: C,
+    bound: f64,
+    factor: Firming,
+}
+
+impl<C: Groups> Firmed<C> {
+    pub fn new(inner: C, bound: f64) -> Self {
+        let factor = Firming::new(inner.num_groups(), inner.rows_per_group());
+        Firmed {
+            inner,
+            bound,
+            factor,
+        }
+    }
+
+    #[cfg(test)]
+    pub fn factors(&self) -> &[f64] {
+        self.factor.factors()
+    }
+}
+
+impl<C: Constraint + Groups> Constraint for Firmed<C> {
+    fn name(&self) -> &str {
+        self.inner.name()
+    }
+    fn weight(&self) -> f64 {
+        self.inner.weight()
+    }
+    fn num_rows(&self) -> usize {
+        self.inner.num_rows()
+    }
+    fn arity(&self) -> usize {
+        self.inner.arity()
+    }
+    fn row_variables(&self, row: usize, vars: &mut [usize]) {
+        self.inner.row_variables(row, vars)
+    }
+    fn refresh(&mut self, x: &[f64]) {
+        self.inner.refresh(x);
+        let past = self.inner.past(x, self.bound);
+        self.factor.firm(|group| past[group]);
+    }
+    fn evaluate(&self, x: &[f64], res: &mut [f64], jac: &mut [f64]) {
+        self.inner.evaluate(x, res, jac);
+        self.factor.scale(self.inner.arity(), res, jac);
     }
 }

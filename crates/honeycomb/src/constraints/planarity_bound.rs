@@ -8,54 +8,26 @@
 //! turns the fit towards its largest residuals, as reweighted least squares does for a
 //! maximum.
 
-use super::firming::Firming;
+use super::firming::{Firmed, Groups};
 use super::quad_planarity::QuadPlanarity;
-use crate::solve::Constraint;
 use crate::structure::quad_planarity;
 
-pub struct BoundedPlanarity {
-    planarity: QuadPlanarity,
-    /// Planarity past which a quad's factor doubles.
-    pub bound: f64,
-    /// Per quad: the factor its rows are scaled by.
-    factor: Firming,
-}
+/// Quad planarity at its weight for quads flatter than `bound` (`BoundedPlanarity::new(
+/// planarity, bound)`), firming up past it.
+pub type BoundedPlanarity = Firmed<QuadPlanarity>;
 
-impl BoundedPlanarity {
-    pub fn new(planarity: QuadPlanarity, bound: f64) -> Self {
-        let factor = Firming::new(planarity.quads.len(), planarity.sides.len());
-        BoundedPlanarity {
-            planarity,
-            bound,
-            factor,
-        }
+/// A quad's rows; past the bound where its diagonals are farther apart, over its mean side.
+impl Groups for QuadPlanarity {
+    fn rows_per_group(&self) -> usize {
+        self.sides.len()
     }
-}
-
-impl Constraint for BoundedPlanarity {
-    fn name(&self) -> &str {
-        self.planarity.name()
+    fn num_groups(&self) -> usize {
+        self.quads.len()
     }
-    fn weight(&self) -> f64 {
-        self.planarity.weight
-    }
-    fn num_rows(&self) -> usize {
-        self.planarity.num_rows()
-    }
-    fn arity(&self) -> usize {
-        self.planarity.arity()
-    }
-    fn row_variables(&self, row: usize, vars: &mut [usize]) {
-        self.planarity.row_variables(row, vars)
-    }
-    fn refresh(&mut self, x: &[f64]) {
-        let (layout, quads, bound) = (self.planarity.layout, &self.planarity.quads, self.bound);
-        self.factor
-            .firm(|q| quad_planarity(quads[q].map(|v| layout.vertex_at(x, v))) > bound);
-    }
-    fn evaluate(&self, x: &[f64], res: &mut [f64], jac: &mut [f64]) {
-        self.planarity.evaluate(x, res, jac);
-        self.factor.scale(self.planarity.arity(), res, jac);
+    fn past(&self, x: &[f64], bound: f64) -> Vec<bool> {
+        (self.quads.iter())
+            .map(|q| quad_planarity(q.map(|v| self.layout.vertex_at(x, v))) > bound)
+            .collect()
     }
 }
 
@@ -65,6 +37,7 @@ mod tests {
     use super::*;
     use crate::constraints::{Layout, QuadNormalBlock};
     use crate::geometry::Vec3;
+    use crate::solve::Constraint;
 
     /// A quad bent past the bound weighs twice as much after each refresh, up to the cap; a
     /// planar one keeps its weight.
@@ -129,7 +102,7 @@ mod tests {
             0.01,
         );
         flat.refresh(&x);
-        let factors = flat.factor.factors();
+        let factors = flat.factors();
         assert!(factors.iter().all(|&f| f == 1.0), "{factors:?}");
     }
 }
