@@ -104,6 +104,7 @@ fn variant(name: &str) -> Variant {
             w_cons_faces: None,
             w_fair_zig: None,
             w_fair_str: None,
+            quads_reshape: None,
         },
     }
 }

@@ -36,6 +36,7 @@ fn cases() -> Vec<Case> {
                 w_cons_faces: None,
                 w_fair_zig: None,
                 w_fair_str: None,
+                quads_reshape: None,
             },
             ..all_iterations(10)
         },

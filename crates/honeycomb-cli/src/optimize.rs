@@ -32,7 +32,7 @@ pub struct SolveArgs {
     /// Reference surface S (triangle/quad/polygon mesh); default: the base mesh itself.
     #[arg(long)]
     pub surface: Option<PathBuf>,
-    /// Maximum number of guided-projection iterations (with --quads: of the honeycomb, then of the capping) [default: 10, 20 with --light, 60 with --quads].
+    /// Maximum number of guided-projection iterations (with --quads: of the honeycomb, then of the capping) [default: 10, 20 with --light or --quads, 60 with --quads-reshape].
     #[arg(long, allow_negative_numbers = true)]
     pub iterations: Option<usize>,
     /// Distance between M and M' along the node axes, in model units (default 0.3 mean edge lengths).
@@ -124,6 +124,13 @@ pub struct SolveArgs {
     /// 0.01].
     #[arg(long, allow_negative_numbers = true)]
     pub w_fair_str: Option<f64>,
+    /// With --quads: let the cells re-shape, up to this edge-length cv (e.g. 0.3), for flatter
+    /// quads. Where the quads miss 0.01 with each vertex kept in its place along the surface,
+    /// the vertices slide along it within their walls too, and the slid capping is kept if it
+    /// is flatter; report.json's `capping` states the trade [default: the cells keep their
+    /// shape].
+    #[arg(long, value_name = "CV", allow_negative_numbers = true)]
+    pub quads_reshape: Option<f64>,
     /// Guide the node axes towards the surface normals in the first iterations, so that walls
     /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
     #[arg(long, default_value_t = Options::default().w_guide, allow_negative_numbers = true)]
@@ -217,6 +224,12 @@ impl SolveArgs {
             (self.w_fair_zig.is_some(), "--w-fair-zig", "--quads", quads),
             (self.w_fair_str.is_some(), "--w-fair-str", "--quads", quads),
             (
+                self.quads_reshape.is_some(),
+                "--quads-reshape",
+                "--quads",
+                quads,
+            ),
+            (
                 self.sun_path.is_some(),
                 "--sun-path",
                 "--light",
@@ -259,6 +272,7 @@ impl SolveArgs {
                 w_cons_faces: self.w_cons_faces,
                 w_fair_zig: self.w_fair_zig,
                 w_fair_str: self.w_fair_str,
+                quads_reshape: self.quads_reshape,
             }
         } else if let Some(light) = self.light {
             Variant::Shading {

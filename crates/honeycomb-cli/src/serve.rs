@@ -47,6 +47,15 @@ pub struct Args {
     /// the page shows their planarity after every edit.
     #[arg(long, value_name = "zigzag|alternating|flattest")]
     pub quads: Option<QuadPattern>,
+    /// With --quads: let the cells re-shape up to this edge-length cv for flatter quads, as
+    /// `pipeline --quads-reshape`.
+    #[arg(
+        long,
+        value_name = "CV",
+        requires = "quads",
+        allow_negative_numbers = true
+    )]
+    pub quads_reshape: Option<f64>,
     /// With a design surface: parallel meshes M, M' on the honeycomb's walls, as `pipeline
     /// --parallel`; the page shows how parallel they stay after every edit.
     #[arg(long)]
@@ -249,6 +258,7 @@ fn variant(args: &Args, surface_input: bool) -> Result<Variant> {
             w_cons_faces: None,
             w_fair_zig: None,
             w_fair_str: None,
+            quads_reshape: args.quads_reshape,
         }
     } else if args.parallel {
         Variant::Parallel {

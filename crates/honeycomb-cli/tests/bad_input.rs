@@ -517,6 +517,7 @@ fn a_weight_for_a_variant_not_asked_for() {
         ("--w-cons-faces", "--quads"),
         ("--w-fair-zig", "--quads"),
         ("--w-fair-str", "--quads"),
+        ("--quads-reshape", "--quads"),
     ] {
         let need = format!("{flag} needs {needs}");
         optimize_with_fails(&dir, &[flag, "0.5"], &[&need]);

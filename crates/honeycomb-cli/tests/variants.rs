@@ -245,6 +245,16 @@ fn nonsense_variant_values_are_rejected() {
         &["--w-cons-faces 0", "weight above 0"],
     );
     demo_fails(
+        "quads_reshape",
+        &["--quads", "zigzag", "--quads-reshape", "-1"],
+        &["--quads-reshape -1", "edge-length cv above 0"],
+    );
+    demo_fails(
+        "quads_reshape_nan",
+        &["--quads", "flattest", "--quads-reshape", "NaN"],
+        &["--quads-reshape NaN", "edge-length cv above 0"],
+    );
+    demo_fails(
         "sun_alone",
         &["--sun-path", "sun.txt"],
         &["--sun-path", "--light"],
@@ -327,6 +337,7 @@ fn the_help_states_the_library_defaults_of_the_variant_weights() {
         w_cons_faces: None,
         w_fair_zig: None,
         w_fair_str: None,
+        quads_reshape: None,
     });
     let axes = weights(Variant::Axes {
         axes: Vec::new(),

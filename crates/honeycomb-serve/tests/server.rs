@@ -724,6 +724,7 @@ fn a_design_surface_keeps_its_variant_in_view() {
             w_cons_faces: None,
             w_fair_zig: None,
             w_fair_str: None,
+            quads_reshape: None,
         },
         200,
     );

@@ -111,6 +111,9 @@ pub struct Capping {
     pub along_s_max: f64,
     /// The edge lengths' cv before (after is `edge_length_cv`): how the cells re-shaped.
     pub edge_length_cv_before: f64,
+    /// The edge cv the cells were allowed to re-shape to (`--quads-reshape`); `None`: each
+    /// vertex was held in its place along S.
+    pub reshape: Option<f64>,
 }
 
 impl Capping {
@@ -199,7 +202,7 @@ impl Report {
         capped: &Optimized,
         m: &Measures,
         before: &FaceMeasures,
-        (along_s_max, edge_length_cv_before): (f64, f64),
+        (along_s_max, edge_length_cv_before, reshape): (f64, f64, Option<f64>),
     ) {
         let s = &capped.solve;
         let (Some(mesh), Some(cover)) = (&capped.quads, &capped.quad_cover) else {
@@ -216,6 +219,7 @@ impl Report {
                 delta_face_avg_before: before.delta_face_avg,
                 along_s_max,
                 edge_length_cv_before,
+                reshape,
             }),
         });
     }

@@ -119,12 +119,15 @@ pub enum Variant {
         pattern: QuadPattern,
         /// The straight polylines follow the lattice direction closest to this.
         quad_direction: Option<Vec3>,
-        /// Weight of quad planarity (default 0.1).
+        /// Weight of quad planarity (default 1).
         w_cons_faces: Option<f64>,
         /// Weight of zigzag fairness (default 0.01).
         w_fair_zig: Option<f64>,
         /// Weight of straight-polyline fairness (default 0.01).
         w_fair_str: Option<f64>,
+        /// The edge-length cv the cells may re-shape to for flatter quads (default: none, the
+        /// cells keep their shape).
+        quads_reshape: Option<f64>,
     },
     /// Prescribed node axes (Fig. 10): one direction per base-mesh vertex (zero: free).
     Axes {
@@ -209,6 +212,7 @@ impl Variant {
             w_cons_faces,
             w_fair_zig,
             w_fair_str,
+            quads_reshape,
         } = *self
         else {
             return None;
@@ -220,6 +224,7 @@ impl Variant {
             w_cons_faces: w_cons_faces.unwrap_or(defaults.w_cons_faces),
             w_fair_zigzag: w_fair_zig.unwrap_or(defaults.w_fair_zigzag),
             w_fair_straight: w_fair_str.unwrap_or(defaults.w_fair_straight),
+            reshape: quads_reshape,
         })
     }
 
@@ -241,7 +246,12 @@ impl Options {
     pub fn max_iterations(&self) -> usize {
         self.iterations.unwrap_or(match self.variant {
             Variant::Shading { .. } => 20,
-            Variant::Quads { .. } => 60,
+            // Re-shaping the cells is a slide after the held tries, which takes long.
+            Variant::Quads {
+                quads_reshape: Some(_),
+                ..
+            } => 60,
+            Variant::Quads { .. } => 20,
             _ => 10,
         })
     }

@@ -316,7 +316,8 @@ fn cap_with_cover(
     let along_s = largest_move_along(surface, &uncapped, after, unit);
     let cv_before = report.measures.edge_length_cv;
     let before = face_measures(&uncapped, &cover.quads);
-    report.capped(&capped, &measures, &before, (along_s, cv_before));
+    let moves = (along_s, cv_before, quads.reshape);
+    report.capped(&capped, &measures, &before, moves);
     report.notes.extend(thinner);
     // The capping works in a frame of its own: the way back leaves roundoff.
     let unmoved = (after.iter().zip(&uncapped)).all(|(p, q)| (*p - *q).norm() <= 1e-9 * unit);
@@ -334,7 +335,23 @@ fn cap_with_cover(
         report.notes.push(trade);
     }
     report.notes.extend(flatter_pattern(&report));
+    report.notes.extend(reshaped_cells(&report));
     Ok((capped, report))
+}
+
+/// Where a cover whose cells kept their shape stays less flat than a glazed one asks, a note
+/// pointing to the cells re-shaped.
+fn reshaped_cells(report: &Report) -> Option<String> {
+    let q = report.quads.as_ref()?;
+    let held = q.capping.as_ref().is_some_and(|c| c.reshape.is_none());
+    let f = &q.faces;
+    let short = f.delta_face_max > FLAT_QUAD || f.delta_face_avg > FLAT_QUAD_MEAN;
+    (held && short).then(|| {
+        format!(
+            "each vertex kept its place along S, and so each cell its shape: --quads-reshape              CV lets the vertices slide along S within their walls for flatter quads, the cells              re-shaped up to that edge-length cv (now {})",
+            rounded(report.measures.edge_length_cv, 3)
+        )
+    })
 }
 
 /// Where a patterned cover stays less flat than a glazed one asks, a note pointing to the cover

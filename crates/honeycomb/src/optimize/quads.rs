@@ -35,6 +35,11 @@ pub struct QuadOptions {
     pub w_fair_zigzag: f64,
     /// Weight of straight-polyline fairness (the paper's w_fair^str, 0.01).
     pub w_fair_straight: f64,
+    /// How far the cells may re-shape for flatter quads, as the edge-length cv they may
+    /// reach: where the quads held along S miss the floors, the vertices slide along S too
+    /// (within their walls), and the slid capping is kept if it is flatter and its cells stay
+    /// this even. `None`: each vertex keeps its place along S, and the cells their shape.
+    pub reshape: Option<f64>,
 }
 
 impl Default for QuadOptions {
@@ -45,6 +50,7 @@ impl Default for QuadOptions {
             w_cons_faces: 1.0,
             w_fair_zigzag: 0.01,
             w_fair_straight: 0.01,
+            reshape: None,
         }
     }
 }
@@ -62,7 +68,15 @@ impl QuadOptions {
         }
         check_weight("w_cons_faces", self.w_cons_faces, false)?;
         check_weight("w_fair_zig", self.w_fair_zigzag, true)?;
-        check_weight("w_fair_str", self.w_fair_straight, true)
+        check_weight("w_fair_str", self.w_fair_straight, true)?;
+        match self.reshape {
+            Some(cv) if !(cv.is_finite() && cv > 0.0 && cv <= MAX_RESHAPE) => Err(Error::option(
+                "quads_reshape",
+                crate::error::short_number(cv),
+                format!("expected an edge-length cv above 0 and at most {MAX_RESHAPE}, e.g. 0.3"),
+            )),
+            _ => Ok(()),
+        }
     }
 }
 
@@ -110,25 +124,29 @@ const HELD_TRIES: [CappingTry; 4] = [
     },
 ];
 
-/// Where the held quads miss the floors: where S twists, a quad's planarity needs its cell
-/// to shift along S within its walls, which only a slide gives. Its closeness is firm from the
-/// start: with nothing else holding them, loose vertices wander off S and back, and on the way
-/// their walls cross.
+/// Where the held quads miss the floors and the cells may re-shape: where S twists, a quad's
+/// planarity needs its cell to shift along S within its walls, which only a slide gives. Its
+/// closeness is firm from the start: with nothing else holding them, loose vertices wander off
+/// S and back, and on the way their walls cross.
 const SLIDING_TRY: CappingTry = CappingTry {
     closeness: 1.0,
     sliding: true,
 };
 
-/// The share of the budget the held tries have; the sliding try has the rest.
+/// The share of the budget the held tries have where a sliding try may follow; it has the
+/// rest.
 const HELD_SHARE: f64 = 1.0 / 3.0;
 
 /// The hold along S of a sliding try: enough to pin the vertices' tangential moves that
 /// nothing else asks for, not the planarity's.
 const SLIDING_HOLD: f64 = 0.003;
-/// How uneven a capping may leave the cells (edge-length cv): as even as a honeycomb is asked
-/// to be, or the honeycomb's own cv and a little more where that is higher.
+/// How uneven the held tries may leave the cells (edge-length cv): as even as a honeycomb is
+/// asked to be. Any capping may reach the honeycomb's own cv and a little more where that is
+/// higher.
 const EVEN_CELLS: f64 = 0.12;
 const CV_ALLOWANCE: f64 = 0.01;
+/// The most re-shaping that may be asked for: a cv past it is a typo.
+const MAX_RESHAPE: f64 = 10.0;
 /// The quads a sliding try firms up (see `BoundedPlanarity`): short of the floor asked of a
 /// cover's worst quad (0.01), since one past it takes a few steps to come down.
 const FLAT_ENOUGH: f64 = 0.008;
@@ -170,8 +188,8 @@ pub struct Capped {
 /// along S. A honeycomb on S keeps about one degree of freedom per cell; its two quads ask
 /// for two, which the slides along the axes give. With the wall normals as unknowns too the
 /// planarity pulls the node conditions with it and the solve ends off 120 degrees. Where the
-/// quads held along S miss the floors, the vertices slide along S too (`SLIDING_TRY`), and
-/// the flatter capping is kept.
+/// quads held along S miss the floors and `options.reshape` lets the cells re-shape, the
+/// vertices slide along S too (`SLIDING_TRY`), and the flatter capping is kept.
 pub(crate) fn cap(
     honeycomb: &Honeycomb,
     conn: &Connectivity,
@@ -182,21 +200,28 @@ pub(crate) fn cap(
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Capped> {
     let walls = (honeycomb, conn, normals);
+    // The kept walls are weighted rows: the capping's vertices are put on them exactly.
+    let on_walls = |mut c: Capped| {
+        c.vertices = onto_kept_walls(&c.vertices, &conn.edges, normals);
+        c
+    };
+    let held_tries = |solver: &SolverOptions, progress: &mut dyn FnMut(&IterationInfo)| {
+        let tries = (&HELD_TRIES[..], EVEN_CELLS);
+        cap_trying(tries, walls, surface, options, solver, progress)
+    };
+    let Some(reshape) = options.reshape else {
+        return Ok(on_walls(held_tries(solver, progress)?));
+    };
     let budget = solver.max_iterations;
     let held_budget = ((budget as f64 * HELD_SHARE).ceil() as usize).clamp(1, budget);
     let held_solver = SolverOptions {
         max_iterations: held_budget,
         ..solver.clone()
     };
-    let held = cap_trying(&HELD_TRIES, walls, surface, options, &held_solver, progress)?;
+    let held = held_tries(&held_solver, progress)?;
     let planarity = |c: &Capped| face_measures(&c.vertices, &c.cover.quads);
     let flat = planarity(&held);
     let left = budget.saturating_sub(held.solve.iterations);
-    // The kept walls are weighted rows: the capping's vertices are put on them exactly.
-    let on_walls = |mut c: Capped| {
-        c.vertices = onto_kept_walls(&c.vertices, &conn.edges, normals);
-        c
-    };
     if (flat.delta_face_max <= FLAT_QUAD && flat.delta_face_avg <= FLAT_QUAD_MEAN) || left == 0 {
         return Ok(on_walls(held));
     }
@@ -211,7 +236,7 @@ pub(crate) fn cap(
     };
     let walls = (&held_honeycomb, conn, normals);
     let sliding = cap_trying(
-        &[SLIDING_TRY],
+        (&[SLIDING_TRY], reshape),
         walls,
         surface,
         options,
@@ -230,9 +255,10 @@ pub(crate) fn cap(
     Ok(on_walls(kept))
 }
 
-/// [`cap`] of the honeycomb, its connectivity and its wall normals, with these tries in turn.
+/// [`cap`] of the honeycomb, its connectivity and its wall normals, with these tries in turn,
+/// each clean only if its cells are at most as uneven as `even` (edge-length cv) allows.
 fn cap_trying(
-    tries: &[CappingTry],
+    (tries, even): (&[CappingTry], f64),
     (honeycomb, conn, normals): (&Honeycomb, &Connectivity, &[Vec3]),
     surface: &PolyMesh,
     options: &QuadOptions,
@@ -268,15 +294,15 @@ fn cap_trying(
             convex && along(vertices, e) * along(&normalized.vertices, e) > 0.0
         })
     };
-    // Nor may the cells re-shape past what a honeycomb is asked: the vertices slide along their
-    // walls, and slides that flatten the quads where S twists stretch some edges to several
-    // mean lengths.
+    // Nor may the cells re-shape past what is allowed: the vertices slide along their walls,
+    // and slides that flatten the quads where S twists stretch some edges to several mean
+    // lengths.
     let lengths = |p: &[Vec3]| -> Vec<f64> {
         (conn.edges.iter())
             .map(|&[a, b]| (p[a] - p[b]).norm())
             .collect()
     };
-    let uneven = EVEN_CELLS.max(edge_length_cv(&lengths(&normalized.vertices)) + CV_ALLOWANCE);
+    let uneven = even.max(edge_length_cv(&lengths(&normalized.vertices)) + CV_ALLOWANCE);
     // Distances in the mean edge length as it is: the capping moves the vertices along S too.
     let is_clean = |vertices: &[Vec3]| {
         let farthest = (vertices.iter())
@@ -531,16 +557,19 @@ mod tests {
         let options = QuadOptions::default();
         let walls = (&honeycomb, &conn, normals.as_slice());
         let capped = cap_trying(
-            &[
-                CappingTry {
-                    closeness: 1e-3,
-                    sliding: false,
-                },
-                CappingTry {
-                    closeness: 3.0,
-                    sliding: false,
-                },
-            ],
+            (
+                &[
+                    CappingTry {
+                        closeness: 1e-3,
+                        sliding: false,
+                    },
+                    CappingTry {
+                        closeness: 3.0,
+                        sliding: false,
+                    },
+                ],
+                EVEN_CELLS,
+            ),
             walls,
             surface.source_mesh(),
             &options,
