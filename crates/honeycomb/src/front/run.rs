@@ -348,7 +348,9 @@ fn reshaped_cells(report: &Report) -> Option<String> {
     let short = f.delta_face_max > FLAT_QUAD || f.delta_face_avg > FLAT_QUAD_MEAN;
     (held && short).then(|| {
         format!(
-            "each vertex kept its place along S, and so each cell its shape: --quads-reshape              CV lets the vertices slide along S within their walls for flatter quads, the cells              re-shaped up to that edge-length cv (now {})",
+            "each vertex kept its place along S, and so each cell its shape: --quads-reshape \
+             CV lets the vertices slide along S within their walls for flatter quads, the cells \
+             re-shaped up to that edge-length cv (now {})",
             rounded(report.measures.edge_length_cv, 3)
         )
     })

@@ -438,6 +438,7 @@ fn a_capping_may_reshape_the_cells_for_flatter_quads() {
     // Short of the floors with the cells kept, the note points to re-shaping them.
     let hint = |notes: &[String]| notes.iter().any(|n| n.contains("--quads-reshape"));
     assert!(hint(&notes), "{notes:?}");
+    assert!(notes.iter().all(|n| !n.contains("  ")), "{notes:?}");
     let (little, _, notes) = capped(Some(0.3));
     assert!(little.delta_face_max <= held.delta_face_max, "{little:?}");
     assert!(!hint(&notes), "{notes:?}");
