@@ -158,6 +158,7 @@ def test_optimize_on_its_own_base(result):
         ("flatten", "origami", "flatten"),
         ("boundary", "fold", "boundary"),
         ("align", "no/such/strokes.txt", "align"),
+        ("variant", {"kind": "quads", "pattern": "zigzag", "quads_reshape": -1.0}, "quads.reshape"),
     ],
 )
 def test_a_bad_option_raises_value_error_naming_it(surface, option, value, named):
