@@ -40,9 +40,10 @@ pub struct Args {
     pub per_edge: bool,
     /// Instead of the sizes: one row per variant of the paper's section 4 (parallel meshes,
     /// quads, shading, prescribed axes, minimum edge length) on its test subject. With
-    /// --roofs: one row per surface and variant of the pipeline (quads zigzag and alternating,
-    /// parallel meshes): iterations, seconds, omega, delta, delta_face before and after
-    /// capping or beta, closeness.
+    /// --roofs: one row per surface and variant of the pipeline (quads zigzag, alternating and
+    /// flattest, flattest with --quads-reshape 0.3, parallel meshes, two suns): iterations,
+    /// seconds, omega, delta, delta_face before and after capping, beta or the light share,
+    /// closeness, edge cv.
     #[arg(long)]
     pub variants: bool,
     /// Instead of the sizes: `init` (flatten with ARAP, and field) on a 40k-triangle roof, for 2000 and

@@ -42,12 +42,15 @@ pub struct RoofsArgs {
     pub json: bool,
 }
 
-/// The variants `--variants` runs on every surface, by the name its rows give: the shading
-/// rows are for a sun 30 degrees high in the south-west and 60 degrees high in the north-east.
-const VARIANTS: [&str; 6] = [
+/// The variants `--variants` runs on every surface, by the name its rows give: `reshaped 0.3`
+/// is the flattest cover whose cells may re-shape up to an edge cv of 0.3
+/// (`--quads-reshape 0.3`); the shading rows are for a sun 30 degrees high in the south-west
+/// and 60 degrees high in the north-east.
+const VARIANTS: [&str; 7] = [
     "zigzag",
     "alternating",
     "flattest",
+    "reshaped 0.3",
     "parallel",
     "sun 30/225",
     "sun 60/45",
@@ -91,6 +94,8 @@ fn variant(name: &str) -> Variant {
             w_axes: None,
         };
     }
+    let reshaped = name.strip_prefix("reshaped ");
+    let quads_reshape = reshaped.map(|cv| cv.parse::<f64>().expect("a reshaped row names its cv"));
     match name {
         "parallel" => Variant::Parallel {
             depth: None,
@@ -98,13 +103,16 @@ fn variant(name: &str) -> Variant {
             w_depth: None,
         },
         pattern => Variant::Quads {
-            pattern: (pattern.parse::<QuadPattern>())
-                .expect("the other rows of VARIANTS are quad patterns"),
+            pattern: match reshaped {
+                Some(_) => QuadPattern::Flattest,
+                None => (pattern.parse::<QuadPattern>())
+                    .expect("the other rows of VARIANTS are quad patterns"),
+            },
             quad_direction: None,
             w_cons_faces: None,
             w_fair_zig: None,
             w_fair_str: None,
-            quads_reshape: None,
+            quads_reshape,
         },
     }
 }
@@ -236,8 +244,8 @@ pub fn run(args: RoofsArgs) -> Result<()> {
 fn run_variants(args: &RoofsArgs, surfaces: &[(String, Source)]) -> Result<()> {
     if !args.json {
         println!(
-            "{:<28} {:<11} {:>6} {:>6} {:>7} {:>4} {:>4} {:>9} {:>9} {:>15} {:>15} {:>7} {:>13} \
-             {:>6}  status",
+            "{:<28} {:<12} {:>6} {:>6} {:>7} {:>4} {:>4} {:>9} {:>9} {:>15} {:>15} {:>7} {:>13} \
+             {:>6} {:>6}  status",
             "surface",
             "variant",
             "asked",
@@ -251,7 +259,8 @@ fn run_variants(args: &RoofsArgs, surfaces: &[(String, Source)]) -> Result<()> {
             "df avg bef/aft",
             "beta",
             "light bef/aft",
-            "close"
+            "close",
+            "cv"
         );
     }
     let names = variant_names(args.suns);
@@ -260,7 +269,7 @@ fn run_variants(args: &RoofsArgs, surfaces: &[(String, Source)]) -> Result<()> {
             let (mut suns, mut met) = (0, 0);
             for variant in &names {
                 if !args.json {
-                    print!("{name:<28} {variant:<11} {cells:>6} ");
+                    print!("{name:<28} {variant:<12} {cells:>6} ");
                     let _ = std::io::Write::flush(&mut std::io::stdout());
                 }
                 let row = bench_one(name, source, cells, args, Some(variant));
@@ -290,7 +299,7 @@ fn print_variant_row(row: &Row, json: bool) -> Result<()> {
         _ => "-".into(),
     };
     println!(
-        "{:>6} {:>7.2} {:>4} {:>4} {:>9.1e} {:>9.1e} {:>15} {:>15} {:>7} {:>13} {:>6.3}  {}",
+        "{:>6} {:>7.2} {:>4} {:>4} {:>9.1e} {:>9.1e} {:>15} {:>15} {:>7} {:>13} {:>6.3} {:>6.3}  {}",
         f.cells,
         f.seconds,
         f.iterations_total,
@@ -302,6 +311,7 @@ fn print_variant_row(row: &Row, json: bool) -> Result<()> {
         v.beta_max_deg.map_or("-".into(), |b| format!("{b:.1e}")),
         pair(v.light_share_before, v.light_share_after),
         f.closeness_max,
+        f.edge_length_cv,
         row.status
     );
     Ok(())

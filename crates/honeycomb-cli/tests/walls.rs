@@ -319,12 +319,13 @@ fn bench_roofs_variants_has_a_row_per_variant() {
             "zigzag",
             "alternating",
             "flattest",
+            "reshaped 0.3",
             "parallel",
             "sun 30/225",
             "sun 60/45"
         ]
     );
-    for row in rows.iter().take(3) {
+    for row in rows.iter().take(4) {
         assert_eq!(row["status"], "ok", "{row}");
         let capping = number(row, "capping_iterations");
         assert!(
@@ -344,7 +345,13 @@ fn bench_roofs_suns_has_twelve_sun_rows() {
     let roofs = roofs_with_dome(&tmp);
     let rows = bench_rows(&roofs, &["--variants", "--suns"]);
     let variants = variant_names(&rows);
-    let mut expected = vec!["zigzag", "alternating", "flattest", "parallel"];
+    let mut expected = vec![
+        "zigzag",
+        "alternating",
+        "flattest",
+        "reshaped 0.3",
+        "parallel",
+    ];
     let suns: Vec<String> = [30, 45, 60]
         .iter()
         .flat_map(|e| [0, 90, 180, 270].map(|a| format!("sun {e}/{a}")))
@@ -352,7 +359,7 @@ fn bench_roofs_suns_has_twelve_sun_rows() {
     expected.extend(suns.iter().map(String::as_str));
     assert_eq!(variants, expected);
     let mut met = 0;
-    for row in &rows[4..] {
+    for row in &rows[5..] {
         let (before, after) = (
             number(row, "light_share_before"),
             number(row, "light_share_after"),
