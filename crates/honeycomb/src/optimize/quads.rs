@@ -356,12 +356,16 @@ fn cap_trying(
             };
             progress(&info);
             let after = planarity(&x);
-            if this.sliding && flattest.as_ref().is_none_or(|(f, _)| after < *f) {
+            // The cells re-shape a little more at every step of a slide: it stops at the first
+            // clean iterate that meets the floors, or whose every quad is flat enough (the
+            // firming has nothing left to do then).
+            let meets = after[0] <= FLAT_QUAD && after[1] <= FLAT_QUAD_MEAN;
+            let flatter = flattest.as_ref().is_none_or(|(f, _)| after < *f);
+            if this.sliding && (meets || flatter) {
                 let vertices = vertices_of(&x);
                 if is_clean(&vertices) {
                     flattest = Some((after, vertices));
-                    // Every quad flat enough: the firming has nothing left to do.
-                    if after[0] <= FLAT_ENOUGH {
+                    if meets || after[0] <= FLAT_ENOUGH {
                         break;
                     }
                 }

@@ -450,7 +450,8 @@ fn a_capping_may_reshape_the_cells_for_flatter_quads() {
     // The cells moved along S, by edge lengths where the held ones barely moved.
     assert!(slid_capping.along_s_max > 1.0, "{slid_capping:?}");
     assert!(held_capping.along_s_max < 0.1, "{held_capping:?}");
-    assert!(slid_capping.iterations <= 60, "{slid_capping:?}");
+    // It stops where the floors are met, short of the budget: the cells re-shape no further.
+    assert!(slid_capping.iterations < 60, "{slid_capping:?}");
     let trade = notes.iter().find(|n| n.contains("the edge cv")).cloned();
     assert!(trade.is_some(), "{notes:?}");
 }
