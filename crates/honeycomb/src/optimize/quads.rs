@@ -380,11 +380,15 @@ fn cap_trying(
         }
         let mut solve = projection.report(&x, state, solver);
         iterations += solve.iterations;
-        let mut vertices = vertices_of(&x);
-        let mut clean = is_clean(&vertices);
-        if let Some((_, kept)) = flattest.filter(|_| !clean) {
-            (vertices, clean) = (kept, true);
-        }
+        // A slide ends on its flattest clean iterate (the last one only if that is it).
+        let (vertices, clean) = match flattest {
+            Some((_, kept)) => (kept, true),
+            None => {
+                let vertices = vertices_of(&x);
+                let clean = is_clean(&vertices);
+                (vertices, clean)
+            }
+        };
         let last = tries.peek().is_none() || iterations >= solver.max_iterations;
         if last || clean {
             solve.iterations = iterations;
