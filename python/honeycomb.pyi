@@ -180,7 +180,8 @@ def optimize(
     """Optimizes a hexagonal (trivalent) base mesh into a honeycomb on ``surface`` (default:
     the base mesh itself). ``options`` as for :func:`pipeline`, and ``variant``, e.g.
     ``variant={"kind": "parallel", "depth": 0.2}`` or ``{"kind": "quads", "pattern":
-    "zigzag"}``."""
+    "zigzag"}`` (with ``"quads_reshape": 0.3``, the cells may re-shape up to that edge-length
+    cv for flatter quads)."""
 
 def read(dir: Union[str, "os.PathLike[str]"], surface: Optional[MeshLike] = None) -> Result:
     """Reads a structure directory (``save``'s, or the CLI's ``optimize`` or ``pipeline``) and
