@@ -345,7 +345,7 @@ fn reshaped_cells(report: &Report) -> Option<String> {
     let q = report.quads.as_ref()?;
     let held = q.capping.as_ref().is_some_and(|c| c.reshape.is_none());
     let f = &q.faces;
-    let short = f.delta_face_max > FLAT_QUAD || f.delta_face_avg > FLAT_QUAD_MEAN;
+    let short = !f.meet_floors();
     (held && short).then(|| {
         format!(
             "each vertex kept its place along S, and so each cell its shape: --quads-reshape \
@@ -361,7 +361,7 @@ fn reshaped_cells(report: &Report) -> Option<String> {
 fn flatter_pattern(report: &Report) -> Option<String> {
     let q = report.quads.as_ref()?;
     let f = &q.faces;
-    let short = f.delta_face_max > FLAT_QUAD || f.delta_face_avg > FLAT_QUAD_MEAN;
+    let short = !f.meet_floors();
     (short && q.quad_pattern != QuadPattern::Flattest).then(|| {
         format!(
             "the {} cover's quads are {} (worst) and {} (mean) from planar, above the \

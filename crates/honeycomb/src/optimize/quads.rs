@@ -18,7 +18,7 @@ use crate::solve::{
     Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
 };
 use crate::structure::{
-    edge_length_cv, face_measures, is_convex, Honeycomb, QuadCover, FLAT_QUAD, FLAT_QUAD_MEAN,
+    edge_length_cv, face_measures, is_convex, meet_quad_floors, Honeycomb, QuadCover,
 };
 use crate::surface::Surface;
 
@@ -222,7 +222,7 @@ pub(crate) fn cap(
     let planarity = |c: &Capped| face_measures(&c.vertices, &c.cover.quads);
     let flat = planarity(&held);
     let left = budget.saturating_sub(held.solve.iterations);
-    if (flat.delta_face_max <= FLAT_QUAD && flat.delta_face_avg <= FLAT_QUAD_MEAN) || left == 0 {
+    if flat.meet_floors() || left == 0 {
         return Ok(on_walls(held));
     }
     let sliding_solver = SolverOptions {
@@ -359,7 +359,7 @@ fn cap_trying(
             // The cells re-shape a little more at every step of a slide: it stops at the first
             // clean iterate that meets the floors, or whose every quad is flat enough (the
             // firming has nothing left to do then).
-            let meets = after[0] <= FLAT_QUAD && after[1] <= FLAT_QUAD_MEAN;
+            let meets = meet_quad_floors(after[0], after[1]);
             let flatter = flattest.as_ref().is_none_or(|(f, _)| after < *f);
             if this.sliding && (meets || flatter) {
                 let vertices = vertices_of(&x);

@@ -15,7 +15,7 @@ pub(crate) use quad_cover::QuadCover;
 pub use quad_cover::QuadPattern;
 pub(crate) use quad_measures::quad_mesh_measures;
 pub(crate) use quad_measures::{face_measures, four_sided, quad_planarities};
-pub use quad_measures::{FaceMeasures, FLAT_QUAD, FLAT_QUAD_MEAN};
+pub use quad_measures::{meet_quad_floors, FaceMeasures, FLAT_QUAD, FLAT_QUAD_MEAN};
 #[cfg(test)]
 pub(crate) use variant_measures::angle_deg;
 pub(crate) use variant_measures::betas_deg;

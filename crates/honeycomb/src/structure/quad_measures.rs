@@ -20,6 +20,19 @@ pub struct FaceMeasures {
     pub quads: usize,
 }
 
+impl FaceMeasures {
+    /// Whether these quads meet both floors a glazed cover asks.
+    pub fn meet_floors(&self) -> bool {
+        meet_quad_floors(self.delta_face_max, self.delta_face_avg)
+    }
+}
+
+/// Whether quads whose worst and mean planarity are `max` and `avg` meet both floors a glazed
+/// cover asks ([`FLAT_QUAD`], [`FLAT_QUAD_MEAN`]).
+pub fn meet_quad_floors(max: f64, avg: f64) -> bool {
+    max <= FLAT_QUAD && avg <= FLAT_QUAD_MEAN
+}
+
 /// Each quad's planarity on `vertices`.
 pub fn quad_planarities(vertices: &[Vec3], quads: &[[usize; 4]]) -> Vec<f64> {
     quads

@@ -189,9 +189,7 @@ fn pipeline_caps_its_honeycomb_on_generated_surfaces() {
         let m = measure(&out.honeycomb, &surface);
         let quads = out.report.quads.as_ref().expect("quads reported");
         let capping = quads.capping.as_ref().expect("capping reported");
-        let mesh = out.quads.as_ref().expect("quads.obj");
-        let split = mesh.faces.iter().filter(|f| f.len() == 4).count();
-        let faces = crate::structure::quad_mesh_measures(mesh, split);
+        let faces = written_quads(&out);
         println!(
             "{shape:?} {pattern:?}: delta_face {:.4}/{:.4} (before {:.4}/{:.4}), omega {:.1e}, \
              delta {:.1e}, closeness {:.3}, {} iterations",
@@ -365,12 +363,18 @@ fn piped_quads_at(
     }
     let out = crate::pipeline(surface, &options, &mut crate::Progress::silent()).unwrap();
     assert!(out.is_honeycomb());
-    let mesh = out.quads.as_ref().unwrap();
-    let split = mesh.faces.iter().filter(|f| f.len() == 4).count();
-    let faces = crate::structure::quad_mesh_measures(mesh, split);
+    let faces = written_quads(&out);
     let grid = out.initialized.as_ref().unwrap().flat.as_ref().unwrap();
     let follows = grid.lattice_follows;
     (out, faces, follows)
+}
+
+/// The planarity of the quads a `pipeline --quads` run writes (quads.obj: its four-sided
+/// faces, the split quads).
+fn written_quads(out: &crate::Outcome) -> FaceMeasures {
+    let mesh = out.quads.as_ref().expect("quads.obj");
+    let split = mesh.faces.iter().filter(|f| f.len() == 4).count();
+    crate::structure::quad_mesh_measures(mesh, split)
 }
 
 /// `pipeline --quads PATTERN` with the default weights, the cells kept.
@@ -404,9 +408,7 @@ fn a_capping_may_reshape_the_cells_for_flatter_quads() {
         options.options.variant = reshaping_quads_variant(QuadPattern::Zigzag, reshape);
         let out = crate::pipeline(&surface, &options, &mut crate::Progress::silent()).unwrap();
         let m = measure(&out.honeycomb, &surface);
-        let mesh = out.quads.as_ref().expect("quads.obj");
-        let split = mesh.faces.iter().filter(|f| f.len() == 4).count();
-        let faces = crate::structure::quad_mesh_measures(mesh, split);
+        let faces = written_quads(&out);
         let quads = out.report.quads.as_ref().expect("quads reported");
         let capping = quads.capping.clone().expect("capping reported");
         println!(
