@@ -25,7 +25,7 @@ pub struct Args {
     /// Iterations per run (all are done: the convergence test is off).
     #[arg(long, default_value_t = 5, allow_negative_numbers = true)]
     pub iterations: usize,
-    /// Built-in surface: saddle, dome, cylinder or roof.
+    /// Built-in surface: saddle, dome, cylinder, cone, wave, ring or roof.
     #[arg(long, default_value = "dome")]
     pub shape: Shape,
     /// Print one JSON object per size instead of the table.

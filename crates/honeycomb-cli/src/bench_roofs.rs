@@ -17,13 +17,15 @@ use std::time::Instant;
 /// Where the real roofs are by default: the team's shared data beside the checkout.
 pub const DEFAULT_DIR: &str = "../shared/data";
 
-/// The built-in surfaces `--generated` adds: two developables, a dome, a saddle, a wave.
-const GENERATED: [Shape; 5] = [
+/// The built-in surfaces `--generated` adds: two developables, a dome, a saddle, a wave, and a
+/// developable round a hole.
+const GENERATED: [Shape; 6] = [
     Shape::Cylinder,
     Shape::Cone,
     Shape::Dome,
     Shape::Saddle,
     Shape::Wave,
+    Shape::Ring,
 ];
 
 /// What `bench --roofs` runs.

@@ -67,7 +67,7 @@ pub struct Args {
     /// With --light: more light directions (a day's sun path), one "x y z" per line.
     #[arg(long, requires = "light")]
     pub sun_path: Option<PathBuf>,
-    /// Built-in surface of the demo (no input): saddle, dome, cylinder or roof.
+    /// Built-in surface of the demo (no input): saddle, dome, cylinder, cone, wave, ring or roof.
     #[arg(long, default_value = "dome")]
     pub shape: Shape,
     /// Vertices of the demo's base mesh (no input).

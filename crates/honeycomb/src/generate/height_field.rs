@@ -1,6 +1,7 @@
 //! Analytic design surfaces given as height fields z = f(x, y) over a disk of radius `d`:
 //! the saddle (negative curvature), the dome (positive), the cylinder and the cone
-//! (developable), the wave (both kinds) and the roof (both kinds, over a rectangle; see `roof`).
+//! (developable), the wave (both kinds), the ring (a developable round a hole, over an annulus)
+//! and the roof (both kinds, over a rectangle; see `roof`).
 
 use crate::geometry::Vec3;
 use crate::mesh::PolyMesh;
@@ -17,7 +18,18 @@ pub enum Shape {
     Wave,
     /// An undulating sheet twice as long as wide (`roof` with amplitude `ROOF_AMPLITUDE`).
     Roof,
+    /// A stadium's bowl: a cone's flank round a hole, rising outwards at `RING_SLOPE`, so that
+    /// the hole holds a sixth of a turn of curvature: a lattice closes round it only turning
+    /// by 60 degrees (see `init::seam`).
+    Ring,
 }
+
+/// The ring's slope: cos(a) = 5/6 for its angle a, so that its border round the hole turns by
+/// a sixth of a turn less than a circle in the plane.
+pub const RING_SLOPE: f64 = 0.663_324_958_071_079_9;
+
+/// The ring's hole, as a share of the patch's radius.
+const RING_HOLE: f64 = 0.4;
 
 impl FromStr for Shape {
     type Err = String;
@@ -29,8 +41,9 @@ impl FromStr for Shape {
             "cone" => Ok(Shape::Cone),
             "wave" => Ok(Shape::Wave),
             "roof" => Ok(Shape::Roof),
+            "ring" => Ok(Shape::Ring),
             _ => Err(format!(
-                "unknown surface '{s}': expected saddle, dome, cylinder, cone, wave or roof"
+                "unknown surface '{s}': expected saddle, dome, cylinder, cone, wave, ring or roof"
             )),
         }
     }
@@ -67,6 +80,15 @@ impl HeightField {
                 0.15 * d * (pi * x / d).sin() * (0.5 * pi * y / d).cos()
             }
             Shape::Roof => super::roof::roof_height(x, y, d, super::roof::ROOF_AMPLITUDE),
+            Shape::Ring => RING_SLOPE * ((x * x + y * y).sqrt() - d),
+        }
+    }
+
+    /// The radius of the hole in the patch (the ring's), or 0.
+    pub fn hole(&self) -> f64 {
+        match self.shape {
+            Shape::Ring => RING_HOLE * self.d,
+            _ => 0.0,
         }
     }
 
@@ -80,6 +102,9 @@ impl HeightField {
     /// A triangulated square grid of `n` x `n` cells over [-1.2 d, 1.2 d]^2, covering the patch
     /// with a margin; triangles counter-clockwise seen from +z.
     pub fn triangulate(&self, n: usize) -> PolyMesh {
+        if self.shape == Shape::Ring {
+            return self.triangulate_ring(n);
+        }
         let half = 1.2 * self.d;
         let step = 2.0 * half / n as f64;
         let mut vertices = Vec::with_capacity((n + 1) * (n + 1));
@@ -95,6 +120,32 @@ impl HeightField {
             for i in 0..n {
                 faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
                 faces.push(vec![id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        PolyMesh::new(vertices, faces)
+    }
+
+    /// The ring over the annulus from its hole to 1.2 d, in `n` / 3 rings of 2 `n` triangle
+    /// pairs (about as many triangles as the square grid of `n`, as long as they are wide),
+    /// counter-clockwise seen from +z.
+    fn triangulate_ring(&self, n: usize) -> PolyMesh {
+        let (inner, outer) = (self.hole(), 1.2 * self.d);
+        let (around, n) = (2 * n, n.div_ceil(3));
+        let mut vertices = Vec::with_capacity((n + 1) * around);
+        for j in 0..=n {
+            let r = inner + (outer - inner) * j as f64 / n as f64;
+            for i in 0..around {
+                let t = std::f64::consts::TAU * i as f64 / around as f64;
+                let (x, y) = (r * t.cos(), r * t.sin());
+                vertices.push(Vec3::new(x, y, self.height(x, y)));
+            }
+        }
+        let id = |i: usize, j: usize| j * around + i % around;
+        let mut faces = Vec::with_capacity(2 * n * around);
+        for j in 0..n {
+            for i in 0..around {
+                faces.push(vec![id(i, j), id(i + 1, j + 1), id(i + 1, j)]);
+                faces.push(vec![id(i, j), id(i, j + 1), id(i + 1, j + 1)]);
             }
         }
         PolyMesh::new(vertices, faces)

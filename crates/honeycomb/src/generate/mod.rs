@@ -4,7 +4,7 @@ mod height_field;
 mod hex_patch;
 mod roof;
 
-pub use height_field::{HeightField, Shape};
+pub use height_field::{HeightField, Shape, RING_SLOPE};
 pub use hex_patch::{hex_disk, radius_for_vertices};
 pub use roof::{roof, ROOF_AMPLITUDE};
 
@@ -19,10 +19,43 @@ pub fn lifted_hex_patch(shape: Shape, vertices: usize) -> (PolyMesh, PolyMesh) {
     }
     let d = radius_for_vertices(vertices);
     let field = HeightField { shape, d };
-    let mut base = hex_disk(d);
+    let mut base = without_hole(hex_disk(d), field.hole());
     field.lift(&mut base);
     let cells_across = (2.4 * d / 0.5).ceil() as usize;
     (base, field.triangulate(cells_across.clamp(32, 160)))
+}
+
+/// `mesh` without the cells whose centroid lies within `radius` of the z axis.
+fn without_hole(mesh: PolyMesh, radius: f64) -> PolyMesh {
+    if radius <= 0.0 {
+        return mesh;
+    }
+    let outside = |f: &Vec<usize>| {
+        let c = f
+            .iter()
+            .fold(crate::geometry::Vec3::ZERO, |s, &v| s + mesh.vertices[v]);
+        let c = c / f.len() as f64;
+        c.x.hypot(c.y) >= radius
+    };
+    let mut index = vec![usize::MAX; mesh.vertices.len()];
+    let mut vertices = Vec::new();
+    let faces = mesh
+        .faces
+        .iter()
+        .filter(|f| outside(f))
+        .map(|f| {
+            f.iter()
+                .map(|&v| {
+                    if index[v] == usize::MAX {
+                        index[v] = vertices.len();
+                        vertices.push(mesh.vertices[v]);
+                    }
+                    index[v]
+                })
+                .collect()
+        })
+        .collect();
+    PolyMesh::new(vertices, faces)
 }
 
 /// A built-in design surface on its own (what `pipeline` takes): the height field over a
