@@ -41,9 +41,10 @@ pub struct InitArgs {
     /// [default: arap; pipeline: arap for walls across or free, project for uniform walls].
     #[arg(long)]
     pub flatten: Option<Flattener>,
-    /// Shifts the grid by a pseudo-random offset (flatten) or seeds the fields (field); the same
-    /// seed gives the same mesh [pipeline with field: the next seed too, where this one's mesh
-    /// gives no honeycomb].
+    /// Shifts the grid by a pseudo-random offset (flatten; where the grid turns round a hole,
+    /// turns it about the hole's center instead) or seeds the fields (field); the same seed
+    /// gives the same mesh [pipeline with field: the next seed too, where this one's mesh gives
+    /// no honeycomb].
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
 }

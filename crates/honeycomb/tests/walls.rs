@@ -189,6 +189,69 @@ fn uniform_walls_on_a_surface_that_folds_over_in_plan_are_walls_across() {
     );
 }
 
+/// A stadium's bowl: a cone's flank round a hole that holds a sixth of a turn of curvature.
+/// Flattened whole, its ring would stretch the cells round the hole; `init` turns the lattice
+/// by 60 degrees round it instead, so the honeycomb closes round the hole with even cells and
+/// its walls stand along the normals as on any developable.
+#[test]
+fn a_bowl_round_a_hole_turns_its_lattice_and_stands_its_walls_along_the_normals() {
+    let surface = design_surface(Shape::Ring);
+    let laid = init(&surface, &InitOptions::new(CellSize::Cells(750))).unwrap();
+    let flat = laid.report.flat.as_ref().expect("a flattening");
+    assert_eq!(flat.hole_turn_deg, Some(60.0));
+    assert!(
+        laid.report.edge_length_cv < 0.01,
+        "{}",
+        laid.report.edge_length_cv
+    );
+    assert_eq!(border_loops(&laid.base), 2);
+    for cells in [750, 1500] {
+        let made = run(&surface, cells);
+        let what = format!("ring at {cells} cells");
+        assert_clean(&made, &what, cells);
+        assert_eq!(border_loops(&made.honeycomb.base), 2, "{what}");
+        let (lean, parallel) = (
+            made.measures.axis_normal_deg,
+            made.measures.parallel_baseline_deg,
+        );
+        // What developables ask (see above), where parallel axes lean a third of a right angle.
+        assert!(
+            lean.mean <= 0.5 && lean.max <= 2.0 && parallel.mean > 30.0,
+            "{what}: {lean:?} against {parallel:?}"
+        );
+        assert!(made.measures.edge_length_cv <= 0.01, "{what}");
+        assert!(made.report.iterations_total <= 40, "{what}");
+    }
+}
+
+/// How many loops the border of `mesh` makes.
+fn border_loops(mesh: &PolyMesh) -> usize {
+    let mut next = std::collections::HashMap::new();
+    let half_edges: std::collections::HashSet<(usize, usize)> = mesh
+        .faces
+        .iter()
+        .flat_map(|f| (0..f.len()).map(move |k| (f[k], f[(k + 1) % f.len()])))
+        .collect();
+    for &(a, b) in &half_edges {
+        if !half_edges.contains(&(b, a)) {
+            next.insert(a, b);
+        }
+    }
+    let mut seen = std::collections::HashSet::new();
+    let mut loops = 0;
+    for &start in next.keys() {
+        if seen.contains(&start) {
+            continue;
+        }
+        loops += 1;
+        let mut v = start;
+        while seen.insert(v) {
+            v = next[&v];
+        }
+    }
+    loops
+}
+
 /// A vertical band around a hole (a developable closed on itself): no flattening lays cells of
 /// one size on it, `init` says so instead of laying a few, and the pipeline remeshes it with
 /// the field method and stands the walls across it.

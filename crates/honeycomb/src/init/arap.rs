@@ -135,3 +135,149 @@ fn best_rotation(image: [Point2; 3], local: [Point2; 3], w: [f64; 3]) -> [f64; 2
 fn rotate(r: [f64; 2], v: Point2) -> Point2 {
     [r[0] * v[0] - r[1] * v[1], r[1] * v[0] + r[0] * v[1]]
 }
+
+/// A 2x2 matrix, rows first.
+type Block = [[f64; 2]; 2];
+
+const IDENTITY: Block = [[1.0, 0.0], [0.0, 1.0]];
+
+fn block_of(r: [f64; 2]) -> Block {
+    [[r[0], -r[1]], [r[1], r[0]]]
+}
+
+/// a^T b.
+fn transpose_times(a: Block, b: Block) -> Block {
+    [0, 1].map(|r| [0, 1].map(|s| a[0][r] * b[0][s] + a[1][r] * b[1][s]))
+}
+
+fn apply(m: Block, v: Point2) -> Point2 {
+    [
+        m[0][0] * v[0] + m[0][1] * v[1],
+        m[1][0] * v[0] + m[1][1] * v[1],
+    ]
+}
+
+/// [`refine`] for a surface cut open along a seam whose two sides stay images of each other:
+/// each `(right, left)` pair of `pairs` keeps `left = R right + t`, R the turn `turn` (cos, sin)
+/// and t free. Returns false (leaving `points` alone) when the system cannot be factorized.
+pub fn refine_seamed(
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    points: &mut [Point2],
+    iterations: usize,
+    pairs: &[(usize, usize)],
+    turn: [f64; 2],
+) -> bool {
+    let n = points.len();
+    let mut partner = vec![usize::MAX; n];
+    for &(right, left) in pairs {
+        partner[left] = right;
+    }
+    let Some(pin) = (0..n).find(|&v| partner[v] == usize::MAX && !pairs.iter().any(|p| p.0 == v))
+    else {
+        return false;
+    };
+    // Two unknowns per vertex that is neither pinned nor a left copy, then two for t.
+    let mut unknown = vec![usize::MAX; n];
+    let mut m = 0;
+    for v in 0..n {
+        if v != pin && partner[v] == usize::MAX {
+            unknown[v] = m;
+            m += 2;
+        }
+    }
+    let t_unknown = m;
+    m += 2;
+    let rotation = block_of(turn);
+    let pinned = points[pin];
+    // A vertex as a sum of blocks times unknown pairs, plus a constant.
+    let expression = |v: usize| -> (Vec<(Block, usize)>, Point2) {
+        let (right, map) = match partner[v] {
+            usize::MAX => (v, IDENTITY),
+            r => (r, rotation),
+        };
+        let mut terms = Vec::with_capacity(2);
+        let constant = if right == pin {
+            apply(map, pinned)
+        } else {
+            terms.push((map, unknown[right]));
+            [0.0, 0.0]
+        };
+        if partner[v] != usize::MAX {
+            terms.push((IDENTITY, t_unknown));
+        }
+        (terms, constant)
+    };
+    let locals: Vec<[Point2; 3]> = triangles
+        .iter()
+        .map(|t| local_triangle(vertices, t))
+        .collect();
+    let weights: Vec<[f64; 3]> = locals
+        .iter()
+        .map(|p| [0, 1, 2].map(|k| 0.5 * cot_at(*p, k).clamp(0.0, 100.0)))
+        .collect();
+    // Each edge of each triangle: u_i - u_j as terms and a constant.
+    let mut edges = Vec::with_capacity(3 * triangles.len());
+    let mut triplets = Vec::new();
+    for (t, w) in triangles.iter().zip(&weights) {
+        for k in 0..3 {
+            let (i, j, c) = (t[(k + 1) % 3], t[(k + 2) % 3], w[k]);
+            let (mut terms, ci) = expression(i);
+            let (others, cj) = expression(j);
+            terms.extend(
+                others
+                    .into_iter()
+                    .map(|(b, u)| (b.map(|row| row.map(|x| -x)), u)),
+            );
+            // c (Bk^T Bl) at block (k, l), the lower triangle only.
+            for &(bk, uk) in &terms {
+                for &(bl, ul) in &terms {
+                    for (r, row) in transpose_times(bk, bl).iter().enumerate() {
+                        for (s, g) in row.iter().enumerate() {
+                            if uk + r >= ul + s {
+                                triplets.push(Triplet::new(uk + r, ul + s, c * g));
+                            }
+                        }
+                    }
+                }
+            }
+            edges.push((terms, [ci[0] - cj[0], ci[1] - cj[1]]));
+        }
+    }
+    let Ok(matrix) = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &triplets) else {
+        return false;
+    };
+    let Ok(llt) = matrix.sp_cholesky(Side::Lower) else {
+        return false;
+    };
+    let mut rhs = Mat::<f64>::zeros(m, 1);
+    for _ in 0..iterations {
+        rhs.fill(0.0);
+        let mut edge = edges.iter();
+        for ((t, local), w) in triangles.iter().zip(&locals).zip(&weights) {
+            let r = best_rotation(t.map(|v| points[v]), *local, *w);
+            for k in 0..3 {
+                let (li, lj) = (local[(k + 1) % 3], local[(k + 2) % 3]);
+                let d = rotate(r, [li[0] - lj[0], li[1] - lj[1]]);
+                let (terms, constant) = edge.next().expect("one per edge");
+                let target = [w[k] * (d[0] - constant[0]), w[k] * (d[1] - constant[1])];
+                for &(b, u) in terms {
+                    rhs[(u, 0)] += b[0][0] * target[0] + b[1][0] * target[1];
+                    rhs[(u + 1, 0)] += b[0][1] * target[0] + b[1][1] * target[1];
+                }
+            }
+        }
+        llt.solve_in_place_with_conj(faer::Conj::No, rhs.as_mut());
+        let t = [rhs[(t_unknown, 0)], rhs[(t_unknown + 1, 0)]];
+        for v in 0..n {
+            if unknown[v] != usize::MAX {
+                points[v] = [rhs[(unknown[v], 0)], rhs[(unknown[v] + 1, 0)]];
+            }
+        }
+        for &(right, left) in pairs {
+            let turned = apply(rotation, points[right]);
+            points[left] = [turned[0] + t[0], turned[1] + t[1]];
+        }
+    }
+    points.iter().all(|p| p[0].is_finite() && p[1].is_finite())
+}

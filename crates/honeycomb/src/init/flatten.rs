@@ -196,6 +196,50 @@ pub fn flatten_viewed(
     })
 }
 
+/// `free`, a flattening of S cut open along a seam (`pairs`, see [`super::seam`]), refined
+/// as-rigid-as-possible with the seam's left side held as the right side turned by `turn`
+/// (cos, sin); None where that refinement fails or turns over more than slivers.
+pub fn flatten_seamed(
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    free: &Flattening,
+    pairs: &[(usize, usize)],
+    turn: [f64; 2],
+) -> Option<Flattening> {
+    let mut points = free.points.clone();
+    if !super::arap::refine_seamed(
+        vertices,
+        triangles,
+        &mut points,
+        ARAP_ITERATIONS,
+        pairs,
+        turn,
+    ) {
+        return None;
+    }
+    let area3 = free.area;
+    if turned_over_area(vertices, triangles, &points)
+        > turned_over_area(vertices, triangles, &free.points) + MAX_FOLDED_AREA * area3
+    {
+        return None;
+    }
+    let area2: f64 = triangles.iter().map(|t| signed_area(&points, t)).sum();
+    if area2.is_nan() || area2 <= 0.0 {
+        return None;
+    }
+    let s = (area3 / area2).sqrt();
+    for p in &mut points {
+        *p = [p[0] * s, p[1] * s];
+    }
+    Some(Flattening {
+        flipped: flipped(&points, triangles),
+        distortion: distortion(vertices, triangles, &points),
+        area: area3,
+        points,
+        flattener: Flattener::Arap,
+    })
+}
+
 /// Least-squares conformal map, two far boundary vertices pinned.
 fn lscm(
     vertices: &[Vec3],

@@ -83,6 +83,18 @@ impl Lattice {
         (rq as i64, rr as i64)
     }
 
+    /// The corner nearest `p`.
+    pub fn corner_near(&self, p: Point2) -> Corner {
+        let distance = |c: &Corner| {
+            let q = self.corner(*c);
+            (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)
+        };
+        Lattice::cell_corners(self.cell_containing(p))
+            .into_iter()
+            .min_by(|a, b| distance(a).total_cmp(&distance(b)))
+            .expect("six corners")
+    }
+
     /// Every cell whose center lies within two edge lengths of the box [lo, hi].
     pub fn cells_covering(&self, lo: Point2, hi: Point2) -> Vec<(i64, i64)> {
         let pad = 2.0 * self.edge;

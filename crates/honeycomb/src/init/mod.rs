@@ -18,6 +18,7 @@ mod flatten;
 mod lattice;
 mod locate;
 mod principal;
+mod seam;
 mod strokes;
 
 #[cfg(test)]
@@ -226,6 +227,9 @@ pub struct FlatteningReport {
     pub flattening: Distortion,
     /// Triangles of S that the flattening turned over (0 for a good flattening).
     pub flipped_triangles: usize,
+    /// Where S has a hole whose border turns by a share of a full turn: the lattice's turn
+    /// round it (degrees, a multiple of 60; see `seam`), else null.
+    pub hole_turn_deg: Option<f64>,
 }
 
 pub struct Initialized {
@@ -320,10 +324,9 @@ pub fn largest_fitting_edge(surface: &PolyMesh, options: &InitOptions) -> Option
             let (vertices, triangles) = surface.star_triangulated();
             let flat =
                 flatten_viewed(&vertices, &triangles, options.flattener, options.view).ok()?;
+            let domain = Domain::whole(&vertices, &triangles, &flat);
             search_down(longest, bottom, |edge| {
-                in_time()
-                    && lay_lattice(surface, &vertices, &triangles, &flat, &sized(edge), start)
-                        .is_ok()
+                in_time() && lay_lattice(surface, &domain, &sized(edge), start).is_ok()
             })
         }
     }
@@ -523,9 +526,14 @@ fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Ini
         Method::Flatten => {
             let (vertices, triangles) = surface.star_triangulated();
             let flat = flatten_viewed(&vertices, &triangles, options.flattener, options.view)?;
-            let made = counted(options, |o| {
-                lay_lattice(surface, &vertices, &triangles, &flat, o, start)
-            })?;
+            let seamed = (flat.flattener == Flattener::Arap)
+                .then(|| seam::round_hole(&vertices, &triangles, &flat))
+                .flatten();
+            let domain = match &seamed {
+                Some(s) => Domain::seamed(s),
+                None => Domain::whole(&vertices, &triangles, &flat),
+            };
+            let made = counted(options, |o| lay_lattice(surface, &domain, o, start))?;
             let covered = made.base.area() / flat.area;
             if options.flattener == Flattener::Arap
                 && flat.flattener == Flattener::Arap
@@ -534,15 +542,58 @@ fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Ini
             {
                 // The refinement folded the domain over itself and cut it apart.
                 let lscm = flatten(&vertices, &triangles, Flattener::Lscm)?;
-                counted(options, |o| {
-                    lay_lattice(surface, &vertices, &triangles, &lscm, o, start)
-                })?
+                let domain = Domain::whole(&vertices, &triangles, &lscm);
+                counted(options, |o| lay_lattice(surface, &domain, o, start))?
             } else {
                 made
             }
         }
     };
     Ok(made)
+}
+
+/// A flattened S to lay the lattice on: S (or S cut open along a seam) and its flattening.
+struct Domain<'a> {
+    vertices: &'a [Vec3],
+    triangles: &'a [[usize; 3]],
+    flat: &'a Flattening,
+    /// S's own border (without the seam's sides).
+    border: Vec<[usize; 2]>,
+    /// The seam and the lattice's turn across it (degrees).
+    seam: Option<(&'a seam::PlaneSeam, f64)>,
+}
+
+impl<'a> Domain<'a> {
+    fn whole(vertices: &'a [Vec3], triangles: &'a [[usize; 3]], flat: &'a Flattening) -> Self {
+        Domain {
+            vertices,
+            triangles,
+            flat,
+            border: flatten::boundary_half_edges(triangles),
+            seam: None,
+        }
+    }
+
+    fn seamed(s: &'a seam::Seamed) -> Self {
+        let sides: std::collections::HashSet<[usize; 2]> = s
+            .cut
+            .pairs
+            .windows(2)
+            .flat_map(|w| {
+                let (a, b) = ([w[0].0, w[1].0], [w[0].1, w[1].1]);
+                [a, [a[1], a[0]], b, [b[1], b[0]]]
+            })
+            .collect();
+        let mut border = flatten::boundary_half_edges(&s.cut.triangles);
+        border.retain(|e| !sides.contains(e));
+        Domain {
+            vertices: &s.cut.vertices,
+            triangles: &s.cut.triangles,
+            flat: &s.flat,
+            border,
+            seam: Some((&s.seam, s.turn_deg)),
+        }
+    }
 }
 
 /// `make` with `options`, and with rescaled cells while the count is off what `options` asks.
@@ -598,12 +649,11 @@ fn counted(
 /// `vertices`, `triangles`), its corners mapped back onto S.
 fn lay_lattice(
     surface: &PolyMesh,
-    vertices: &[Vec3],
-    triangles: &[[usize; 3]],
-    flat: &Flattening,
+    domain: &Domain,
     options: &InitOptions,
     start: Instant,
 ) -> Result<Initialized> {
+    let (vertices, triangles, flat) = (domain.vertices, domain.triangles, domain.flat);
     let area = flat.area;
     let edge = options.size.edge_on(area);
     let fits = area / hexagon_area(edge);
@@ -615,11 +665,21 @@ fn lay_lattice(
             fits,
         )));
     }
-    let (angle, follows) = lattice_angle(options, vertices, triangles, &flat.points)?;
+    let border = &domain.border;
+    let (angle, follows) = lattice_angle(options, vertices, triangles, &flat.points, border)?;
+    // Round a seam the lattice turns about a cell's center, which must be the seam's: a seed
+    // turns it about there instead of shifting it.
+    let (offset, angle) = match domain.seam {
+        Some((seam, _)) => {
+            let share = seeded_offset(options.seed, 1.0)[0] / 3f64.sqrt();
+            (seam.center, angle + share * std::f64::consts::FRAC_PI_3)
+        }
+        None => (seeded_offset(options.seed, edge), angle),
+    };
     let lattice = Lattice {
         edge,
         angle,
-        offset: seeded_offset(options.seed, edge),
+        offset,
     };
     // The lattice covers the flat domain's bounding box: a thin diagonal strip could ask for
     // far more cells there than the surface holds.
@@ -634,13 +694,13 @@ fn lay_lattice(
         )));
     }
     let locator = Locator::new(&flat.points, triangles);
-    let boundary = flatten::boundary_half_edges(triangles);
     let placed = place_cells(
         &lattice,
         &flat.points,
         &locator,
-        &boundary,
+        border,
         options.boundary,
+        domain.seam.map(|s| s.0),
     );
     if placed.is_empty() {
         return Err(no_cell_fits("cell", edge, area, fits));
@@ -652,21 +712,22 @@ fn lay_lattice(
             .zip(l.weights)
             .fold(Vec3::ZERO, |s, (&v, w)| s + vertices[v] * w),
         Placed::OnBoundary { segment, t, .. } => {
-            let [a, b] = boundary[*segment];
+            let [a, b] = border[*segment];
             vertices[a] * (1.0 - t) + vertices[b] * *t
         }
     };
     // A cell whose corners land far apart on S straddles a place where the flattening
     // overlaps itself (an annulus can wrap over its own hole): dropped.
-    let folded = |cell: (i64, i64)| {
-        let corners = Lattice::cell_corners(cell).map(|c| to_surface(&placed.corners[&c]));
+    let folded = |corners: &[Corner; 6]| {
+        let corners = corners.map(|c| to_surface(&placed.corners[&c]));
         (0..6).any(|k| (corners[k] - corners[(k + 1) % 6]).norm() > MAX_EDGE_STRETCH * edge)
     };
+    let corners_of: HashMap<(i64, i64), [Corner; 6]> = placed.cells.iter().copied().collect();
     let unfolded: Vec<(i64, i64)> = placed
         .cells
         .iter()
-        .copied()
-        .filter(|&c| !folded(c))
+        .filter(|(_, corners)| !folded(corners))
+        .map(|&(cell, _)| cell)
         .collect();
     if unfolded.is_empty() {
         return Err(Error::Mesh(format!(
@@ -680,8 +741,8 @@ fn lay_lattice(
     let mut index: HashMap<Corner, usize> = HashMap::new();
     let mut mesh_vertices = Vec::new();
     let mut faces = Vec::new();
-    for &cell in &cells {
-        let face = Lattice::cell_corners(cell)
+    for cell in &cells {
+        let face = corners_of[cell]
             .iter()
             .map(|c| {
                 *index.entry(*c).or_insert_with(|| {
@@ -712,6 +773,7 @@ fn lay_lattice(
             lattice_follows: follows,
             flattening: flat.distortion.clone(),
             flipped_triangles: flat.flipped,
+            hole_turn_deg: domain.seam.map(|s| s.1),
         }),
         start,
     )?;
@@ -754,16 +816,11 @@ fn lattice_angle(
     vertices: &[Vec3],
     triangles: &[[usize; 3]],
     points: &[Point2],
+    border: &[[usize; 2]],
 ) -> Result<(f64, LatticeFollows)> {
     // Lattice edges run at 30, 90 and 150 degrees before rotation: turn 30 degrees less.
     let edge_direction = std::f64::consts::FRAC_PI_6;
-    let boundary = || {
-        sixfold_mean(
-            flatten::boundary_half_edges(triangles)
-                .into_iter()
-                .map(|[a, b]| (points[a], points[b])),
-        )
-    };
+    let boundary = || sixfold_mean(border.iter().map(|&[a, b]| (points[a], points[b])));
     let (mean, follows) = match &options.align {
         Align::None => return Ok((options.turn, LatticeFollows::None)),
         Align::Boundary => (boundary(), LatticeFollows::Boundary),
@@ -854,7 +911,8 @@ impl Placed {
 }
 
 struct PlacedCells {
-    cells: Vec<(i64, i64)>,
+    /// Each cell and its corners (across a seam, the corners it runs on into).
+    cells: Vec<((i64, i64), [Corner; 6])>,
     corners: HashMap<Corner, Placed>,
 }
 
@@ -870,6 +928,7 @@ fn place_cells(
     locator: &Locator,
     boundary: &[[usize; 2]],
     mode: BoundaryMode,
+    seam: Option<&seam::PlaneSeam>,
 ) -> PlacedCells {
     let triangles = locator.triangles();
     let (lo, hi) = bounds(points);
@@ -878,6 +937,12 @@ fn place_cells(
         *corners
             .entry(c)
             .or_insert_with(|| locator.locate(lattice.corner(c)).map(Placed::Inside))
+    };
+    // A point a step from a cell's center that lies beyond a side of the seam is the point
+    // the lattice runs on into across it.
+    let across = |center: Point2, p: Point2| {
+        let q = seam.and_then(|s| s.across(center, p))?;
+        locator.locate(q).map(|l| (q, l))
     };
     // Cells holding a boundary vertex: over a hole smaller than a cell, all their corners can
     // lie on S while the cell spans the hole.
@@ -888,46 +953,67 @@ fn place_cells(
     let mut cells = Vec::new();
     let mut placed: HashMap<Corner, Placed> = HashMap::new();
     for cell in lattice.cells_covering(lo, hi) {
+        let center = lattice.center(cell);
+        // Round a seam, a cell whose center lies beyond it is laid as the cell it runs on into.
+        if seam.is_some() && locator.locate(center).is_none() {
+            continue;
+        }
         let keys = Lattice::cell_corners(cell);
-        let found = keys.map(&mut locate_corner);
+        let mut canonical = keys;
+        let mut found = keys.map(&mut locate_corner);
+        for k in 0..6 {
+            if found[k].is_none() {
+                if let Some((q, l)) = across(center, lattice.corner(keys[k])) {
+                    canonical[k] = lattice.corner_near(q);
+                    found[k] = Some(Placed::Inside(l));
+                }
+            }
+        }
         let all_inside = found.iter().all(Option::is_some);
         // A concave stretch of boundary can cross an edge whose ends are both inside.
         let edges_inside = all_inside
             && !holding.contains(&cell)
             && (0..6).all(|k| {
                 let (p, q) = (lattice.corner(keys[k]), lattice.corner(keys[(k + 1) % 6]));
-                locator
-                    .locate([0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])])
-                    .is_some()
+                let middle = [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])];
+                locator.locate(middle).is_some() || across(center, middle).is_some()
             });
         if edges_inside {
-            for (k, f) in keys.iter().zip(found) {
+            for (k, f) in canonical.iter().zip(found) {
                 placed.insert(*k, f.expect("inside"));
             }
-            cells.push(cell);
+            cells.push((cell, canonical));
             continue;
         }
         // Keep closes cells cut by the boundary; one with every corner on S yet not whole
         // spans a hole or a notch of the boundary, and is dropped in both modes.
-        if mode == BoundaryMode::Trim
-            || all_inside
-            || locator.locate(lattice.center(cell)).is_none()
-        {
+        if mode == BoundaryMode::Trim || all_inside || locator.locate(center).is_none() {
             continue;
         }
         // Keep: outside corners onto the nearest boundary point; the closed cell must stay a
-        // fair convex hexagon, else it is dropped.
+        // fair convex hexagon, else it is dropped. A corner across a seam keeps its place in
+        // the cell's own frame for that test.
         let closed: Vec<Placed> = keys
             .iter()
             .zip(found)
             .map(|(k, f)| f.unwrap_or_else(|| snap(lattice.corner(*k), points, boundary)))
             .collect();
-        let polygon: Vec<Point2> = closed.iter().map(|p| p.point(points, triangles)).collect();
+        let polygon: Vec<Point2> = closed
+            .iter()
+            .zip(canonical.iter().zip(keys))
+            .map(|(p, (c, k))| {
+                if *c == k {
+                    p.point(points, triangles)
+                } else {
+                    lattice.corner(k)
+                }
+            })
+            .collect();
         if fair_hexagon(&polygon, lattice.edge) {
-            for (k, p) in keys.iter().zip(closed) {
+            for (k, p) in canonical.iter().zip(closed) {
                 placed.entry(*k).or_insert(p);
             }
-            cells.push(cell);
+            cells.push((cell, canonical));
         }
     }
     PlacedCells {
