@@ -70,6 +70,9 @@ fn loop_length(vertices: &[Vec3], l: &[usize]) -> f64 {
 /// ends rather than removing it.
 const WORTH_A_SEAM: f64 = 0.85;
 
+/// Holes tried at most, the longest first: each costs two flattenings.
+const MAX_HOLES_TRIED: usize = 4;
+
 /// The outer border: the longest loop.
 fn outer_loop(vertices: &[Vec3], loops: &[Vec<usize>]) -> usize {
     (0..loops.len())
@@ -106,7 +109,13 @@ pub fn round_hole(
     }
     let outer = outer_loop(vertices, &loops);
     let mut best: Option<Seamed> = None;
-    for hole in (0..loops.len()).filter(|&k| k != outer) {
+    // A hole need not hold the curvature itself: the lattice's turn round it can take up
+    // some of a dome's about it too, as a pentagon there would.
+    let mut holes: Vec<usize> = (0..loops.len()).filter(|&k| k != outer).collect();
+    let length = |k: usize| loop_length(vertices, &loops[k]);
+    holes.sort_by(|&a, &b| length(b).total_cmp(&length(a)));
+    holes.truncate(MAX_HOLES_TRIED);
+    for hole in holes {
         let Some(cut) = cut(vertices, triangles, &loops, hole, outer) else {
             continue;
         };
