@@ -13,7 +13,8 @@ pub struct Args {
     /// Output directory.
     #[arg(short, long, default_value = "honeycomb-demo")]
     pub output: PathBuf,
-    /// Built-in design surface: saddle, dome, cylinder, cone, wave, ring (a bowl round a hole) or roof (twice as long as wide).
+    /// Built-in design surface: saddle, dome, cylinder, cone, wave, ring (a bowl round a hole)
+    /// or roof (twice as long as wide).
     #[arg(long, default_value = "saddle")]
     pub shape: Shape,
     /// Approximate number of vertices of the hexagonal base mesh.

@@ -25,6 +25,23 @@ fn local_triangle(vertices: &[Vec3], t: &[usize; 3]) -> [Point2; 3] {
     ]
 }
 
+/// Each triangle in its own plane, and the half-cotangent weight of its edge (k+1, k+2): the
+/// angle at k faces it.
+fn locals_and_weights(
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+) -> (Vec<[Point2; 3]>, Vec<[f64; 3]>) {
+    let locals: Vec<[Point2; 3]> = triangles
+        .iter()
+        .map(|t| local_triangle(vertices, t))
+        .collect();
+    let weights = locals
+        .iter()
+        .map(|p| [0, 1, 2].map(|k| 0.5 * cot_at(*p, k).clamp(0.0, 100.0)))
+        .collect();
+    (locals, weights)
+}
+
 fn cot_at(p: [Point2; 3], k: usize) -> f64 {
     // Cotangent of the angle at corner k.
     let (o, a, b) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
@@ -49,15 +66,7 @@ pub fn refine(
     if n < 3 {
         return false;
     }
-    let locals: Vec<[Point2; 3]> = triangles
-        .iter()
-        .map(|t| local_triangle(vertices, t))
-        .collect();
-    // Half-cotangent weight of edge (k+1, k+2) of each triangle: the angle at k faces it.
-    let weights: Vec<[f64; 3]> = locals
-        .iter()
-        .map(|p| [0, 1, 2].map(|k| 0.5 * cot_at(*p, k).clamp(0.0, 100.0)))
-        .collect();
+    let (locals, weights) = locals_and_weights(vertices, triangles);
     // Laplacian over vertices 1..n (vertex 0 pinned), lower triangle.
     let index = |v: usize| v.checked_sub(1);
     let mut triplets = Vec::new();
@@ -208,14 +217,7 @@ pub fn refine_seamed(
         }
         (terms, constant)
     };
-    let locals: Vec<[Point2; 3]> = triangles
-        .iter()
-        .map(|t| local_triangle(vertices, t))
-        .collect();
-    let weights: Vec<[f64; 3]> = locals
-        .iter()
-        .map(|p| [0, 1, 2].map(|k| 0.5 * cot_at(*p, k).clamp(0.0, 100.0)))
-        .collect();
+    let (locals, weights) = locals_and_weights(vertices, triangles);
     // Each edge of each triangle: u_i - u_j as terms and a constant.
     let mut edges = Vec::with_capacity(3 * triangles.len());
     let mut triplets = Vec::new();
