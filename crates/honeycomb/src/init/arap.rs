@@ -236,7 +236,7 @@ pub fn refine_seamed(
                 for &(bl, ul) in &terms {
                     for (r, row) in transpose_times(bk, bl).iter().enumerate() {
                         for (s, g) in row.iter().enumerate() {
-                            if uk + r >= ul + s {
+                            if uk + r >= ul + s && *g != 0.0 {
                                 triplets.push(Triplet::new(uk + r, ul + s, c * g));
                             }
                         }

@@ -529,11 +529,14 @@ fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Ini
             let seamed = (flat.flattener == Flattener::Arap)
                 .then(|| seam::round_hole(&vertices, &triangles, &flat))
                 .flatten();
-            let domain = match &seamed {
-                Some(s) => Domain::seamed(s),
-                None => Domain::whole(&vertices, &triangles, &flat),
+            let whole = Domain::whole(&vertices, &triangles, &flat);
+            let lay =
+                |domain: &Domain| counted(options, |o| lay_lattice(surface, domain, o, start));
+            // A lattice run on across a seam that gives no valid mesh gives way to the whole.
+            let made = match seamed.as_ref().map(|s| lay(&Domain::seamed(s))) {
+                Some(Ok(made)) => made,
+                _ => lay(&whole)?,
             };
-            let made = counted(options, |o| lay_lattice(surface, &domain, o, start))?;
             let covered = made.base.area() / flat.area;
             if options.flattener == Flattener::Arap
                 && flat.flattener == Flattener::Arap
@@ -542,8 +545,7 @@ fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Ini
             {
                 // The refinement folded the domain over itself and cut it apart.
                 let lscm = flatten(&vertices, &triangles, Flattener::Lscm)?;
-                let domain = Domain::whole(&vertices, &triangles, &lscm);
-                counted(options, |o| lay_lattice(surface, &domain, o, start))?
+                lay(&Domain::whole(&vertices, &triangles, &lscm))?
             } else {
                 made
             }
