@@ -647,8 +647,8 @@ fn counted(
     Ok(made)
 }
 
-/// A regular hexagonal lattice laid over the flattening `flat` of `surface` (triangulated as
-/// `vertices`, `triangles`), its corners mapped back onto S.
+/// A regular hexagonal lattice laid over `domain`, a flattening of `surface` (perhaps cut open
+/// along a seam that the lattice runs on across), its corners mapped back onto S.
 fn lay_lattice(
     surface: &PolyMesh,
     domain: &Domain,

@@ -3,8 +3,8 @@
 //!
 //! Carried round a hole, a direction on S comes back turned by the curvature the hole holds
 //! (Gauss-Bonnet: a full turn less the geodesic curvature of its border). A hexagonal lattice
-//! is unchanged by turns of 60 degrees about a cell's center, so a lattice that turns by the
-//! multiple of 60 degrees nearest that curvature fits round the hole with cells of one size,
+//! is unchanged by turns of 60 degrees about a cell's center, so a lattice that turns by a
+//! multiple of 60 degrees near that curvature fits round the hole with cells of one size,
 //! where a flattening of the whole ring into the plane must stretch them (a cone's border is
 //! shorter than a planar circle's). The paper's Proposition 1 in another guise: the hole
 //! holds the curvature a pentagon (or a heptagon) would.
