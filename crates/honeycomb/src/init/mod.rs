@@ -178,6 +178,9 @@ pub struct InitOptions {
     /// With `Method::Flatten`: turns the lattice by this much more than `align` does
     /// (radians).
     pub turn: f64,
+    /// With `Flattener::Arap`: the lattice may turn round a hole that holds curvature (see
+    /// `seam`); false flattens S whole.
+    pub round_holes: bool,
 }
 
 /// A cell edge longer on S than this many lattice edges marks a fold of the flattening.
@@ -250,6 +253,7 @@ impl InitOptions {
             view: None,
             seed: 0,
             turn: 0.0,
+            round_holes: true,
         }
     }
 
@@ -526,7 +530,7 @@ fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Ini
         Method::Flatten => {
             let (vertices, triangles) = surface.star_triangulated();
             let flat = flatten_viewed(&vertices, &triangles, options.flattener, options.view)?;
-            let seamed = (flat.flattener == Flattener::Arap)
+            let seamed = (options.round_holes && flat.flattener == Flattener::Arap)
                 .then(|| seam::round_hole(&vertices, &triangles, &flat))
                 .flatten();
             let whole = Domain::whole(&vertices, &triangles, &flat);

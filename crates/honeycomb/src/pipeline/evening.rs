@@ -21,7 +21,7 @@ use std::time::Instant;
 
 /// Cells this uneven (edge-length cv) or more are evened: what a designer's mesh of one cell
 /// size is asked to keep to.
-const UNEVEN_CELLS_CV: f64 = 0.12;
+pub(crate) const UNEVEN_CELLS_CV: f64 = 0.12;
 /// Rounds of evening at most, each from the last one's result.
 const ROUNDS: usize = 2;
 /// Steps of the guided projection per round: enough to find the trade, not to make it exact.

@@ -196,6 +196,22 @@ pub fn pipeline(
             Err((why, _)) if last => return Err(Error::Solver(format!("{what}: {why}"))),
             solved => solved,
         };
+        let (made, solved) = match solved {
+            Ok(solved) if solved.report.honeycomb => {
+                let (made, solved, note) = more_even_unturned(
+                    made,
+                    solved,
+                    (surface, model_surface),
+                    init_options,
+                    options,
+                    walls,
+                    progress,
+                );
+                notes.extend(note);
+                (made, Ok(solved))
+            }
+            solved => (made, solved),
+        };
         match solved {
             Ok(mut solved) if solved.report.honeycomb || last => {
                 if k > 0 {
@@ -227,6 +243,68 @@ pub fn pipeline(
         }
     }
     unreachable!("the last attempt returns")
+}
+
+/// Walls across S on a grid turned round a hole (`made`) whose cells stayed uneven: the same
+/// grid laid on S flattened whole instead, kept where it is a honeycomb with more even cells
+/// (the turn evens the flattening, not always the walls), with a note saying so; the
+/// iterations of both count.
+fn more_even_unturned(
+    made: Initialized,
+    solved: Solved,
+    (surface, model_surface): (&PolyMesh, &Surface),
+    init_options: &InitOptions,
+    options: &Strategy,
+    walls: Walls,
+    progress: &mut dyn FnMut(Step),
+) -> (Initialized, Solved, Option<String>) {
+    let turned = made.report.flat.as_ref().and_then(|f| f.hole_turn_deg);
+    let uneven = solved.measures.edge_length_cv >= evening::UNEVEN_CELLS_CV;
+    let (Some(turn), true, Walls::Across) = (turned, uneven, walls) else {
+        return (made, solved, None);
+    };
+    let whole = InitOptions {
+        round_holes: false,
+        ..init_options.clone()
+    };
+    let Ok((again_made, _)) = base_mesh(surface, model_surface, &whole, options, walls) else {
+        return (made, solved, None);
+    };
+    let again = solve_made(
+        &again_made,
+        surface,
+        model_surface,
+        options,
+        walls,
+        false,
+        progress,
+    );
+    match again {
+        Ok(Ok(mut again))
+            if again.report.honeycomb
+                && again.measures.edge_length_cv < solved.measures.edge_length_cv =>
+        {
+            again.report.iterations_total += solved.report.iterations_total;
+            let note = format!(
+                "the grid turned by {turn} degrees round a hole left the cells uneven (edge cv \
+                 {}); laid on S flattened whole they are more even ({})",
+                rounded(solved.measures.edge_length_cv, 3),
+                rounded(again.measures.edge_length_cv, 3)
+            );
+            (again_made, again, Some(note))
+        }
+        Ok(Ok(again)) => {
+            let mut solved = solved;
+            solved.report.iterations_total += again.report.iterations_total;
+            (made, solved, None)
+        }
+        Ok(Err((_, iterations))) => {
+            let mut solved = solved;
+            solved.report.iterations_total += iterations;
+            (made, solved, None)
+        }
+        Err(_) => (made, solved, None),
+    }
 }
 
 /// The base meshes the pipeline tries in turn, each with how a note names it and the weight
