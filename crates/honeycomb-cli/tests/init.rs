@@ -236,6 +236,44 @@ fn pipeline_turns_the_grid_of_zigzag_quads_along_the_principal_directions() {
     }
 }
 
+/// init.json says by how much the lattice turns round a hole: 60 degrees round the bowl of the
+/// built-in ring, null on a surface with no hole (a saddle) and where the grid is the plan
+/// view (`--walls uniform`).
+#[test]
+fn init_json_says_how_the_lattice_turns_round_a_hole() {
+    let tmp = TempDir::new("hole_turn");
+    let ring = surface_file(&tmp, "ring");
+    let saddle = surface_file(&tmp, "saddle");
+    for (name, surface, extra, turn) in [
+        ("ring", &ring, &[][..], serde_json::json!(60.0)),
+        ("saddle", &saddle, &[][..], serde_json::Value::Null),
+        (
+            "uniform",
+            &ring,
+            &["--walls", "uniform"][..],
+            serde_json::Value::Null,
+        ),
+    ] {
+        let dir = tmp.join(name);
+        let mut args = vec![
+            "pipeline",
+            surface.to_str().unwrap(),
+            "--cells",
+            "300",
+            "-o",
+        ];
+        args.push(dir.to_str().unwrap());
+        args.extend(extra);
+        let out = run(args);
+        assert!(out.status.success(), "{name}: {}", stderr(&out));
+        assert_eq!(
+            read_json(&dir, "init.json")["hole_turn_deg"],
+            turn,
+            "{name}"
+        );
+    }
+}
+
 /// Without --flatten, pipeline picks the grid for the walls asked: ARAP for walls across S (the
 /// default), the plan view for uniform walls (the dome: a honeycomb with parallel axes from the
 /// start), which falls back to ARAP where S folds over seen from above (a vault closing past
