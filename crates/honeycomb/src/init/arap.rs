@@ -141,7 +141,8 @@ fn best_rotation(image: [Point2; 3], local: [Point2; 3], w: [f64; 3]) -> [f64; 2
     }
 }
 
-fn rotate(r: [f64; 2], v: Point2) -> Point2 {
+/// `v` turned by the rotation `r` (cos, sin).
+pub(super) fn rotate(r: [f64; 2], v: Point2) -> Point2 {
     [r[0] * v[0] - r[1] * v[1], r[1] * v[0] + r[0] * v[1]]
 }
 

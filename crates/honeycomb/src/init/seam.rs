@@ -13,6 +13,7 @@
 //! of the seam are held as images of each other under a turn by that multiple about a point
 //! (a cell's center); the lattice then runs on across the seam.
 
+use super::arap::rotate;
 use super::flatten::{boundary_half_edges, flatten, flatten_seamed, Flattener, Flattening, Point2};
 use crate::geometry::Vec3;
 use std::cmp::Reverse;
@@ -380,10 +381,6 @@ impl PlaneSeam {
             None
         }
     }
-}
-
-fn rotate(r: [f64; 2], v: Point2) -> Point2 {
-    [r[0] * v[0] - r[1] * v[1], r[1] * v[0] + r[0] * v[1]]
 }
 
 /// Whether segment p-q crosses the polyline.
