@@ -3,18 +3,11 @@
 mod common;
 
 use common::{
-    assert_clean_failure, bowl_file, demo, number, read_json, read_written_mesh, run, stderr,
-    TempDir,
+    assert_clean_failure, bowl_file, number, pipeline, read_json, read_written_mesh, run, stderr,
+    surface_file, TempDir,
 };
 use honeycomb::mesh::validate_base_mesh;
-use std::path::{Path, PathBuf};
-
-/// The design surface of a small built-in demo (`shape`), written by `demo`.
-fn surface_file(tmp: &TempDir, shape: &str) -> PathBuf {
-    let dir = tmp.join(&format!("demo-{shape}"));
-    demo(&dir, &["--vertices", "600", "--shape", shape]);
-    dir.join("surface.obj")
-}
+use std::path::Path;
 
 #[test]
 fn init_writes_a_valid_base_mesh_and_its_report() {
@@ -223,10 +216,7 @@ fn pipeline_turns_the_grid_of_zigzag_quads_along_the_principal_directions() {
         ("plain", &[][..], "boundary"),
     ] {
         let dir = tmp.join(name);
-        let mut args = vec!["pipeline", saddle.to_str().unwrap(), "--cells", "300", "-o"];
-        args.push(dir.to_str().unwrap());
-        args.extend(extra);
-        let out = run(args);
+        let out = pipeline(&saddle, &dir, extra);
         assert!(out.status.success(), "{name}: {}", stderr(&out));
         assert_eq!(
             read_json(&dir, "init.json")["lattice_follows"],
@@ -255,16 +245,7 @@ fn init_json_says_how_the_lattice_turns_round_a_hole() {
         ),
     ] {
         let dir = tmp.join(name);
-        let mut args = vec![
-            "pipeline",
-            surface.to_str().unwrap(),
-            "--cells",
-            "300",
-            "-o",
-        ];
-        args.push(dir.to_str().unwrap());
-        args.extend(extra);
-        let out = run(args);
+        let out = pipeline(surface, &dir, extra);
         assert!(out.status.success(), "{name}: {}", stderr(&out));
         assert_eq!(
             read_json(&dir, "init.json")["hole_turn_deg"],

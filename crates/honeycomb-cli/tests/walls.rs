@@ -6,26 +6,6 @@ mod common;
 use common::*;
 use std::path::{Path, PathBuf};
 
-/// A design surface as a file: the surface of a small demo on `shape`.
-fn surface_file(tmp: &TempDir, shape: &str) -> PathBuf {
-    let dir = tmp.join(&format!("demo-{shape}"));
-    demo(&dir, &["--vertices", "600", "--shape", shape]);
-    dir.join("surface.obj")
-}
-
-fn pipeline(surface: &Path, dir: &Path, extra: &[&str]) -> std::process::Output {
-    let mut args = vec![
-        "pipeline",
-        surface.to_str().unwrap(),
-        "--cells",
-        "300",
-        "-o",
-    ];
-    args.push(dir.to_str().unwrap());
-    args.extend(extra);
-    run(args)
-}
-
 /// report.json says how the walls stand, measured from the written meshes; the printed row
 /// ends with the axes' mean lean; across leans less than uniform on a dome, and vertical walls
 /// (0,0,1) are uniform walls seen from above.

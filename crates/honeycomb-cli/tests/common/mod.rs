@@ -280,6 +280,27 @@ pub fn quad_delta(p: [honeycomb::geometry::Vec3; 4]) -> f64 {
     distance / mean_edge
 }
 
+/// A design surface as a file: the surface of a small demo on the built-in `shape`.
+pub fn surface_file(tmp: &TempDir, shape: &str) -> PathBuf {
+    let dir = tmp.join(&format!("demo-{shape}"));
+    demo(&dir, &["--vertices", "600", "--shape", shape]);
+    dir.join("surface.obj")
+}
+
+/// `pipeline SURFACE --cells 300 -o DIR` with `extra` options.
+pub fn pipeline(surface: &Path, dir: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "pipeline",
+        surface.to_str().unwrap(),
+        "--cells",
+        "300",
+        "-o",
+    ];
+    args.push(dir.to_str().unwrap());
+    args.extend(extra);
+    run(args)
+}
+
 /// A steep bowl, `z = 1.5 r^2` over the unit square (slopes up to 65 degrees), written as an
 /// OBJ of 60 x 60 squares each cut in two.
 pub fn bowl_file(tmp: &TempDir) -> PathBuf {
