@@ -96,8 +96,7 @@ pub fn refine(
             let rotation = best_rotation(t.map(|v| points[v]), *local, *w);
             for k in 0..3 {
                 let (i, j, c) = (t[(k + 1) % 3], t[(k + 2) % 3], w[k]);
-                let (li, lj) = (local[(k + 1) % 3], local[(k + 2) % 3]);
-                let d = rotate(rotation, [li[0] - lj[0], li[1] - lj[1]]);
+                let d = rotated_edge(rotation, local, k);
                 // Both ends of the edge pull towards the rotated edge.
                 for (v, sign) in [(i, 1.0), (j, -1.0)] {
                     if let Some(a) = index(v) {
@@ -139,6 +138,13 @@ fn best_rotation(image: [Point2; 3], local: [Point2; 3], w: [f64; 3]) -> [f64; 2
     } else {
         [1.0, 0.0]
     }
+}
+
+/// Edge (k+1, k+2) of the triangle in its own plane `local`, turned by `r`: where the global
+/// step pulls that edge.
+fn rotated_edge(r: [f64; 2], local: &[Point2; 3], k: usize) -> Point2 {
+    let (li, lj) = (local[(k + 1) % 3], local[(k + 2) % 3]);
+    rotate(r, [li[0] - lj[0], li[1] - lj[1]])
 }
 
 /// `v` turned by the rotation `r` (cos, sin).
@@ -259,11 +265,10 @@ pub fn refine_seamed(
         let mut edge = edges.iter();
         for ((t, local), w) in triangles.iter().zip(&locals).zip(&weights) {
             let r = best_rotation(t.map(|v| points[v]), *local, *w);
-            for k in 0..3 {
-                let (li, lj) = (local[(k + 1) % 3], local[(k + 2) % 3]);
-                let d = rotate(r, [li[0] - lj[0], li[1] - lj[1]]);
+            for (k, c) in w.iter().enumerate() {
+                let d = rotated_edge(r, local, k);
                 let (terms, constant) = edge.next().expect("one per edge");
-                let target = [w[k] * (d[0] - constant[0]), w[k] * (d[1] - constant[1])];
+                let target = [c * (d[0] - constant[0]), c * (d[1] - constant[1])];
                 for &(b, u) in terms {
                     rhs[(u, 0)] += b[0][0] * target[0] + b[1][0] * target[1];
                     rhs[(u + 1, 0)] += b[0][1] * target[0] + b[1][1] * target[1];

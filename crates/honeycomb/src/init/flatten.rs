@@ -168,31 +168,55 @@ pub fn flatten_viewed(
         // factor over the whole of S.
         let mut refined = points.clone();
         if super::arap::refine(vertices, triangles, &mut refined, ARAP_ITERATIONS)
-            && turned_over_area(vertices, triangles, &refined)
-                <= turned_over_area(vertices, triangles, &points) + MAX_FOLDED_AREA * area3
+            && turns_over_slivers_only(vertices, triangles, &refined, &points, area3)
         {
             points = refined;
             used = Flattener::Arap;
         }
     }
-    // The same total area as the surface.
+    scaled_to_area(vertices, triangles, points, area3, used).ok_or_else(|| {
+        Error::Mesh(
+            "the flattening folded over (negative area): the surface is too far from a disk".into(),
+        )
+    })
+}
+
+/// Whether the refined flattening `refined` turns over at most slivers more of S (of area
+/// `area3`) than `before` did.
+fn turns_over_slivers_only(
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    refined: &[Point2],
+    before: &[Point2],
+    area3: f64,
+) -> bool {
+    turned_over_area(vertices, triangles, refined)
+        <= turned_over_area(vertices, triangles, before) + MAX_FOLDED_AREA * area3
+}
+
+/// `points` scaled to S's area `area3`, with the distortion they leave; None where their
+/// image has no positive area (the flattening folded over).
+fn scaled_to_area(
+    vertices: &[Vec3],
+    triangles: &[[usize; 3]],
+    mut points: Vec<Point2>,
+    area3: f64,
+    flattener: Flattener,
+) -> Option<Flattening> {
     let area2: f64 = triangles.iter().map(|t| signed_area(&points, t)).sum();
     if area2.is_nan() || area2 <= 0.0 {
-        return Err(Error::Mesh(
-            "the flattening folded over (negative area): the surface is too far from a disk".into(),
-        ));
+        return None;
     }
     let s = (area3 / area2).sqrt();
     for p in &mut points {
         *p = [p[0] * s, p[1] * s];
     }
-    let distortion = distortion(vertices, triangles, &points);
-    Ok(Flattening {
+    Some(Flattening {
         flipped: flipped(&points, triangles),
+        distortion: distortion(vertices, triangles, &points),
         area: area3,
         points,
-        flattener: used,
-        distortion,
+        flattener,
     })
 }
 
@@ -217,27 +241,10 @@ pub fn flatten_seamed(
     ) {
         return None;
     }
-    let area3 = free.area;
-    if turned_over_area(vertices, triangles, &points)
-        > turned_over_area(vertices, triangles, &free.points) + MAX_FOLDED_AREA * area3
-    {
+    if !turns_over_slivers_only(vertices, triangles, &points, &free.points, free.area) {
         return None;
     }
-    let area2: f64 = triangles.iter().map(|t| signed_area(&points, t)).sum();
-    if area2.is_nan() || area2 <= 0.0 {
-        return None;
-    }
-    let s = (area3 / area2).sqrt();
-    for p in &mut points {
-        *p = [p[0] * s, p[1] * s];
-    }
-    Some(Flattening {
-        flipped: flipped(&points, triangles),
-        distortion: distortion(vertices, triangles, &points),
-        area: area3,
-        points,
-        flattener: Flattener::Arap,
-    })
+    scaled_to_area(vertices, triangles, points, free.area, Flattener::Arap)
 }
 
 /// Least-squares conformal map, two far boundary vertices pinned.

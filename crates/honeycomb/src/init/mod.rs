@@ -960,8 +960,9 @@ fn place_cells(
     let mut placed: HashMap<Corner, Placed> = HashMap::new();
     for cell in lattice.cells_covering(lo, hi) {
         let center = lattice.center(cell);
+        let center_inside = locator.locate(center).is_some();
         // Round a seam, a cell whose center lies beyond it is laid as the cell it runs on into.
-        if seam.is_some() && locator.locate(center).is_none() {
+        if seam.is_some() && !center_inside {
             continue;
         }
         let keys = Lattice::cell_corners(cell);
@@ -993,7 +994,7 @@ fn place_cells(
         }
         // Keep closes cells cut by the boundary; one with every corner on S yet not whole
         // spans a hole or a notch of the boundary, and is dropped in both modes.
-        if mode == BoundaryMode::Trim || all_inside || locator.locate(center).is_none() {
+        if mode == BoundaryMode::Trim || all_inside || !center_inside {
             continue;
         }
         // Keep: outside corners onto the nearest boundary point; the closed cell must stay a

@@ -279,6 +279,11 @@ fn more_even_unturned(
         false,
         progress,
     );
+    let spent = match &again {
+        Ok(Ok(again)) => again.report.iterations_total,
+        Ok(Err((_, iterations))) => *iterations,
+        Err(_) => 0,
+    };
     match again {
         Ok(Ok(mut again))
             if again.report.honeycomb
@@ -293,17 +298,11 @@ fn more_even_unturned(
             );
             (again_made, again, Some(note))
         }
-        Ok(Ok(again)) => {
+        _ => {
             let mut solved = solved;
-            solved.report.iterations_total += again.report.iterations_total;
+            solved.report.iterations_total += spent;
             (made, solved, None)
         }
-        Ok(Err((_, iterations))) => {
-            let mut solved = solved;
-            solved.report.iterations_total += iterations;
-            (made, solved, None)
-        }
-        Err(_) => (made, solved, None),
     }
 }
 
