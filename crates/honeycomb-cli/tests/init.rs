@@ -227,15 +227,18 @@ fn pipeline_turns_the_grid_of_zigzag_quads_along_the_principal_directions() {
 }
 
 /// init.json says by how much the lattice turns round a hole: 60 degrees round the bowl of the
-/// built-in ring, null on a surface with no hole (a saddle) and where the grid is the plan
-/// view (`--walls uniform`).
+/// built-in ring, none round a tube (its lattice runs round it unturned), null on a surface
+/// with no hole (a saddle) and where the grid is the plan view (`--walls uniform`).
 #[test]
 fn init_json_says_how_the_lattice_turns_round_a_hole() {
     let tmp = TempDir::new("hole_turn");
     let ring = surface_file(&tmp, "ring");
     let saddle = surface_file(&tmp, "saddle");
+    let tube = tmp.join("tube.obj");
+    honeycomb::mesh::write_mesh(&tube, &honeycomb::generate::tube(4.0, 6.0, 90)).unwrap();
     for (name, surface, extra, turn) in [
         ("ring", &ring, &[][..], serde_json::json!(60.0)),
+        ("tube", &tube, &[][..], serde_json::json!(0.0)),
         ("saddle", &saddle, &[][..], serde_json::Value::Null),
         (
             "uniform",

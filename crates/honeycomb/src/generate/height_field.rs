@@ -114,15 +114,7 @@ impl HeightField {
                 vertices.push(Vec3::new(x, y, self.height(x, y)));
             }
         }
-        let id = |i: usize, j: usize| j * (n + 1) + i;
-        let mut faces = Vec::with_capacity(2 * n * n);
-        for j in 0..n {
-            for i in 0..n {
-                faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                faces.push(vec![id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        PolyMesh::new(vertices, faces)
+        PolyMesh::new(vertices, super::split_quads(n, n, n + 1))
     }
 
     /// The ring over the annulus from its hole to 1.2 d, in `n` / 3 rings of 2 `n` triangle

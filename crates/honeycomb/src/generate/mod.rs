@@ -3,10 +3,12 @@
 mod height_field;
 mod hex_patch;
 mod roof;
+mod tower;
 
 pub use height_field::{HeightField, Shape, RING_SLOPE};
 pub use hex_patch::{hex_disk, radius_for_vertices};
 pub use roof::{roof, ROOF_AMPLITUDE};
+pub use tower::{cooling_tower, tower_radius, tube};
 
 use crate::mesh::PolyMesh;
 
@@ -23,6 +25,21 @@ pub fn lifted_hex_patch(shape: Shape, vertices: usize) -> (PolyMesh, PolyMesh) {
     field.lift(&mut base);
     let cells_across = (2.4 * d / 0.5).ceil() as usize;
     (base, field.triangulate(cells_across.clamp(32, 160)))
+}
+
+/// Two triangles per quad of a grid of `columns` x `rows` quads whose vertex (i, j) is
+/// `j * stride + i % stride` (`stride` is `columns` where the grid closes on itself round a
+/// tube, `columns + 1` where it does not); each quad split along its diagonal from (i, j).
+pub(crate) fn split_quads(columns: usize, rows: usize, stride: usize) -> Vec<Vec<usize>> {
+    let id = |i: usize, j: usize| j * stride + i % stride;
+    let mut faces = Vec::with_capacity(2 * columns * rows);
+    for j in 0..rows {
+        for i in 0..columns {
+            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            faces.push(vec![id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    faces
 }
 
 /// `mesh` without the cells whose centroid lies within `radius` of the z axis.

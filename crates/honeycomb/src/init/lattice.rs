@@ -83,6 +83,30 @@ impl Lattice {
         (rq as i64, rr as i64)
     }
 
+    /// This lattice turned and scaled the least so that `shift` is the step between two cells'
+    /// centers; None where `shift` is shorter than half a step.
+    pub fn with_step(self, shift: Point2) -> Option<Lattice> {
+        let at_origin = Lattice {
+            offset: [0.0, 0.0],
+            ..self
+        };
+        let (i, j) = at_origin.cell_containing(shift);
+        if (i, j) == (0, 0) {
+            return None;
+        }
+        let unit = Lattice {
+            edge: 1.0,
+            angle: 0.0,
+            offset: [0.0, 0.0],
+        }
+        .local_center(i, j);
+        Some(Lattice {
+            edge: shift[0].hypot(shift[1]) / unit[0].hypot(unit[1]),
+            angle: shift[1].atan2(shift[0]) - unit[1].atan2(unit[0]),
+            ..self
+        })
+    }
+
     /// The corner nearest `p`.
     pub fn corner_near(&self, p: Point2) -> Corner {
         let distance = |c: &Corner| {

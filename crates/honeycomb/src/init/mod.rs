@@ -35,6 +35,7 @@ use crate::mesh::{
 use crate::surface::Surface;
 use locate::Locator;
 use serde::Serialize;
+use std::cmp::Reverse;
 use std::collections::{BTreeMap, HashMap};
 use std::str::FromStr;
 use std::time::Instant;
@@ -464,6 +465,10 @@ const COUNT_TOLERANCE: f64 = 0.15;
 /// A mesh covering less than this share of S's area (with `--cells`) comes from a flattening
 /// that folded over: ARAP is given up for LSCM.
 const MIN_COVERED_SHARE: f64 = 0.5;
+/// Cells counted to the number asked that cover less than this share of S's area are no base
+/// mesh for S: the flattening shrank most of S into a corner of the plane, where the lattice
+/// laid few cells or none.
+const MIN_LAID_SHARE: f64 = 0.25;
 
 /// A hexagonal base mesh on `surface` (a triangle, quad or polygon mesh, repaired as
 /// [`crate::Surface::new`] repairs it). With a number of
@@ -530,32 +535,59 @@ fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Ini
         Method::Flatten => {
             let (vertices, triangles) = surface.star_triangulated();
             let flat = flatten_viewed(&vertices, &triangles, options.flattener, options.view)?;
-            let seamed = (options.round_holes && flat.flattener == Flattener::Arap)
-                .then(|| seam::round_hole(&vertices, &triangles, &flat))
-                .flatten();
+            let seamings = if options.round_holes && flat.flattener == Flattener::Arap {
+                seam::round_holes(&vertices, &triangles, &flat)
+            } else {
+                Vec::new()
+            };
             let whole = Domain::whole(&vertices, &triangles, &flat);
             let lay =
                 |domain: &Domain| counted(options, |o| lay_lattice(surface, domain, o, start));
-            // A lattice run on across a seam that gives no valid mesh gives way to the whole.
-            let made = match seamed.as_ref().map(|s| lay(&Domain::seamed(s))) {
-                Some(Ok(made)) => made,
-                _ => lay(&whole)?,
+            // A lattice run on across a seam that gives no valid mesh gives way to the next
+            // seam, and the last to the whole.
+            let made = match seamings.iter().find_map(|s| lay(&Domain::seamed(s)).ok()) {
+                Some(made) => made,
+                None => lay(&whole)?,
             };
-            let covered = made.base.area() / flat.area;
-            if options.flattener == Flattener::Arap
+            let counted = matches!(options.size, CellSize::Cells(_));
+            let made = if options.flattener == Flattener::Arap
                 && flat.flattener == Flattener::Arap
-                && matches!(options.size, CellSize::Cells(_))
-                && covered < MIN_COVERED_SHARE
+                && counted
+                && covered(&made, &flat) < MIN_COVERED_SHARE
             {
                 // The refinement folded the domain over itself and cut it apart.
                 let lscm = flatten(&vertices, &triangles, Flattener::Lscm)?;
-                lay(&Domain::whole(&vertices, &triangles, &lscm))?
+                let made = lay(&Domain::whole(&vertices, &triangles, &lscm))?;
+                let share = covered(&made, &lscm);
+                (share >= MIN_LAID_SHARE)
+                    .then_some(made)
+                    .ok_or((share, lscm))
             } else {
-                made
-            }
+                let share = covered(&made, &flat);
+                (!counted || share >= MIN_LAID_SHARE)
+                    .then_some(made)
+                    .ok_or((share, flat))
+            };
+            made.map_err(|(share, flat)| {
+                Error::Mesh(format!(
+                    "the cells asked for cover {}% of S only: its flattening ({}) shrinks \
+                     areas down to {} and stretches them up to {} times, so that most of S \
+                     lies in a corner of the plane (S wraps around a hole, or curves too much \
+                     to lie flat); --method field remeshes S without flattening it",
+                    (100.0 * share).round(),
+                    format!("{:?}", flat.flattener).to_lowercase(),
+                    rounded(flat.distortion.area_scale_min, 3),
+                    rounded(flat.distortion.area_scale_max, 3),
+                ))
+            })?
         }
     };
     Ok(made)
+}
+
+/// The share of S's area (that of its flattening `flat`) that the cells of `made` cover.
+fn covered(made: &Initialized, flat: &Flattening) -> f64 {
+    made.base.area() / flat.area
 }
 
 /// A flattened S to lay the lattice on: S (or S cut open along a seam) and its flattening.
@@ -673,20 +705,32 @@ fn lay_lattice(
     }
     let border = &domain.border;
     let (angle, follows) = lattice_angle(options, vertices, triangles, &flat.points, border)?;
-    // Round a seam the lattice turns about a cell's center, which must be the seam's: a seed
-    // turns it about there instead of shifting it.
-    let (offset, angle) = match domain.seam {
-        Some((seam, _)) => {
-            let share = seeded_offset(options.seed, 1.0)[0] / 3f64.sqrt();
-            (seam.center, angle + share * std::f64::consts::FRAC_PI_3)
-        }
-        None => (seeded_offset(options.seed, edge), angle),
-    };
-    let lattice = Lattice {
+    let seeded = Lattice {
         edge,
         angle,
-        offset,
+        offset: seeded_offset(options.seed, edge),
     };
+    let lattice = match domain.seam.map(|s| s.0.carry) {
+        // Round a seam the lattice turns about a cell's center, which must be the seam's: a
+        // seed turns it about there instead of shifting it.
+        Some(seam::Carry::Turn { center, .. }) => {
+            let share = seeded_offset(options.seed, 1.0)[0] / 3f64.sqrt();
+            Lattice {
+                edge,
+                angle: angle + share * std::f64::consts::FRAC_PI_3,
+                offset: center,
+            }
+        }
+        // Round a tube the shift across the seam must be a step of the lattice.
+        Some(seam::Carry::Shift(shift)) => seeded.with_step(shift).ok_or_else(|| {
+            Error::Mesh(format!(
+                "cells of edge length {} are wider than the tube S wraps round",
+                rounded(edge, 6)
+            ))
+        })?,
+        None => seeded,
+    };
+    let (edge, angle) = (lattice.edge, lattice.angle);
     // The lattice covers the flat domain's bounding box: a thin diagonal strip could ask for
     // far more cells there than the surface holds.
     let (lo, hi) = bounds(&flat.points);
@@ -743,7 +787,7 @@ fn lay_lattice(
             rounded(edge, 6)
         )));
     }
-    let cells = largest_component(&unfolded);
+    let cells = one_piece(&unfolded, &corners_of);
     let mut index: HashMap<Corner, usize> = HashMap::new();
     let mut mesh_vertices = Vec::new();
     let mut faces = Vec::new();
@@ -1083,40 +1127,111 @@ fn fair_hexagon(polygon: &[Point2], edge: f64) -> bool {
     0.5 * area >= 0.5 * 3f64.sqrt() * edge * edge
 }
 
-/// The cells of the largest piece joined through shared edges (stray cells dropped).
-fn largest_component(cells: &[(i64, i64)]) -> Vec<(i64, i64)> {
-    let at: HashMap<(i64, i64), usize> = cells.iter().enumerate().map(|(k, &c)| (c, k)).collect();
-    let mut label = vec![usize::MAX; cells.len()];
-    let mut sizes = Vec::new();
-    for root in 0..cells.len() {
-        if label[root] != usize::MAX {
-            continue;
+/// The cells of the largest piece joined through shared edges (stray cells dropped), less
+/// those that touch it only at a corner: across a seam, where the cell between two laid
+/// cells lies beyond S's border, they meet at a corner alone, which no mesh can hold.
+fn one_piece(
+    cells: &[(i64, i64)],
+    corners_of: &HashMap<(i64, i64), [Corner; 6]>,
+) -> Vec<(i64, i64)> {
+    let mut kept = cells.to_vec();
+    loop {
+        let edge = |c: &[Corner; 6], k: usize| {
+            let (a, b) = (c[k], c[(k + 1) % 6]);
+            if a < b {
+                (a, b)
+            } else {
+                (b, a)
+            }
+        };
+        let mut by_edge: HashMap<(Corner, Corner), Vec<usize>> = HashMap::new();
+        for (n, cell) in kept.iter().enumerate() {
+            for k in 0..6 {
+                by_edge
+                    .entry(edge(&corners_of[cell], k))
+                    .or_default()
+                    .push(n);
+            }
         }
-        let id = sizes.len();
-        let mut size = 0;
-        label[root] = id;
-        let mut stack = vec![root];
-        while let Some(k) = stack.pop() {
-            size += 1;
-            let (i, j) = cells[k];
-            for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1), (1, -1), (-1, 1)] {
-                if let Some(&n) = at.get(&(i + di, j + dj)) {
-                    if label[n] == usize::MAX {
-                        label[n] = id;
-                        stack.push(n);
+        // Pieces joined through shared edges, and the cells round each corner likewise.
+        let mut piece: Vec<usize> = (0..kept.len()).collect();
+        fn root(piece: &mut [usize], mut n: usize) -> usize {
+            while piece[n] != n {
+                piece[n] = piece[piece[n]];
+                n = piece[n];
+            }
+            n
+        }
+        for sharing in by_edge.values() {
+            for w in sharing.windows(2) {
+                let (a, b) = (root(&mut piece, w[0]), root(&mut piece, w[1]));
+                piece[a] = b;
+            }
+        }
+        let mut sizes: HashMap<usize, usize> = HashMap::new();
+        for n in 0..kept.len() {
+            *sizes.entry(root(&mut piece, n)).or_default() += 1;
+        }
+        let Some((&biggest, _)) = sizes.iter().max_by_key(|&(&r, &size)| (size, Reverse(r))) else {
+            return kept;
+        };
+        let mut drop = vec![false; kept.len()];
+        for (n, d) in drop.iter_mut().enumerate() {
+            *d = root(&mut piece, n) != biggest;
+        }
+        let mut round: HashMap<Corner, Vec<usize>> = HashMap::new();
+        for (n, cell) in kept.iter().enumerate() {
+            for c in corners_of[cell] {
+                round.entry(c).or_default().push(n);
+            }
+        }
+        for (corner, sharing) in &round {
+            // The cells at this corner joined through the edges that end there.
+            let mut fan: HashMap<usize, usize> = sharing.iter().map(|&n| (n, n)).collect();
+            let find = |fan: &HashMap<usize, usize>, mut n: usize| {
+                while fan[&n] != n {
+                    n = fan[&n];
+                }
+                n
+            };
+            for &n in sharing {
+                let c = &corners_of[&kept[n]];
+                for k in (0..6).filter(|&k| c[k] == *corner || c[(k + 1) % 6] == *corner) {
+                    for &m in &by_edge[&edge(c, k)] {
+                        let (a, b) = (find(&fan, n), find(&fan, m));
+                        if a != b {
+                            fan.insert(a, b);
+                        }
+                    }
+                }
+            }
+            let mut groups: HashMap<usize, Vec<usize>> = HashMap::new();
+            for &n in sharing {
+                groups.entry(find(&fan, n)).or_default().push(n);
+            }
+            // The largest group stays (of equals, the one holding the first cell).
+            let stays = groups
+                .values()
+                .max_by_key(|g| (g.len(), Reverse(g.iter().min().copied())))
+                .and_then(|g| g.first().map(|&n| find(&fan, n)));
+            for (&root, group) in &groups {
+                if Some(root) != stays {
+                    for &n in group {
+                        drop[n] = true;
                     }
                 }
             }
         }
-        sizes.push(size);
+        if !drop.contains(&true) {
+            return kept;
+        }
+        kept = kept
+            .iter()
+            .zip(&drop)
+            .filter(|(_, &d)| !d)
+            .map(|(&c, _)| c)
+            .collect();
     }
-    let biggest = (0..sizes.len()).max_by_key(|&k| sizes[k]).unwrap_or(0);
-    cells
-        .iter()
-        .zip(&label)
-        .filter(|(_, &l)| l == biggest)
-        .map(|(&c, _)| c)
-        .collect()
 }
 
 #[allow(clippy::too_many_arguments)]

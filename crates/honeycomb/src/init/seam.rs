@@ -12,6 +12,11 @@
 //! So S is cut along a seam from the hole to the outer border, flattened, and the two sides
 //! of the seam are held as images of each other under a turn by that multiple about a point
 //! (a cell's center); the lattice then runs on across the seam.
+//!
+//! A hole holding a full turn is the end of a tube (a tower, a tunnel, a cooling tower's
+//! waist): no flattening of the whole lays it in the plane, but cut open it unrolls into a
+//! strip whose sides are a shift apart, and a lattice of which that shift is a vector runs
+//! round it unturned.
 
 use super::arap::rotate;
 use super::flatten::{boundary_half_edges, flatten, flatten_seamed, Flattener, Flattening, Point2};
@@ -71,6 +76,13 @@ fn loop_length(vertices: &[Vec3], l: &[usize]) -> f64 {
 /// ends rather than removing it.
 const WORTH_A_SEAM: f64 = 0.85;
 
+/// A hole whose seam's sides, flattened free and left unturned, lie at least this share of the
+/// hole's border length apart wraps S round like a tube (a flat ring's coincide)...
+const WRAPS_ROUND: f64 = 0.5;
+/// ... where its border is at least this share of the outer one's: a tube's two ends. A small
+/// hole down a funnel in a wide roof is wrapped round too, but the lattice must fit the roof.
+const TUBE_ENDS: f64 = 0.4;
+
 /// Holes tried at most, the longest first: each costs two flattenings.
 const MAX_HOLES_TRIED: usize = 4;
 
@@ -89,27 +101,25 @@ pub struct Seamed {
     pub cut: Cut,
     pub flat: Flattening,
     pub seam: PlaneSeam,
-    /// The lattice's turn round the hole (degrees, a multiple of 60).
+    /// The lattice's turn round the hole (degrees, a multiple of 60; 0 round a tube).
     pub turn_deg: f64,
 }
 
-/// Where S (triangulated as `vertices`, `triangles`) has a hole round which a lattice must
-/// turn by 60 degrees or more, S cut open from that hole to its outer border and flattened
-/// with the lattice's turn across the seam: the multiple of 60 degrees nearest the turn the
-/// seam's sides take when flattened free; of several holes, the one that evens the cells
-/// most. None where no hole asks for a turn or the turned flattening does not keep lengths
-/// clearly better than `uncut`.
-pub fn round_hole(
-    vertices: &[Vec3],
-    triangles: &[[usize; 3]],
-    uncut: &Flattening,
-) -> Option<Seamed> {
-    let loops = border_loops(triangles)?;
+/// Where S (triangulated as `vertices`, `triangles`) has holes round which a lattice must
+/// turn by 60 degrees or more, or which S wraps round like a tube, S cut open from each such
+/// hole to its outer border and flattened with the lattice's turn across the seam: the
+/// multiple of 60 degrees nearest the turn the seam's sides take when flattened free, and
+/// round a tube also none (the sides a shift apart). Those that keep lengths clearly better
+/// than `uncut`, the most even first; none where no hole asks for a seam.
+pub fn round_holes(vertices: &[Vec3], triangles: &[[usize; 3]], uncut: &Flattening) -> Vec<Seamed> {
+    let Some(loops) = border_loops(triangles) else {
+        return Vec::new();
+    };
     if loops.len() < 2 {
-        return None;
+        return Vec::new();
     }
     let outer = outer_loop(vertices, &loops);
-    let mut best: Option<Seamed> = None;
+    let mut seamed = Vec::new();
     // A hole need not hold the curvature itself: the lattice's turn round it can take up
     // some of a dome's about it too, as a pentagon there would.
     let mut holes: Vec<usize> = (0..loops.len()).filter(|&k| k != outer).collect();
@@ -123,38 +133,48 @@ pub fn round_hole(
         let Ok(free) = flatten(&cut.vertices, &cut.triangles, Flattener::Arap) else {
             continue;
         };
-        // Left free, the seam's sides turn by about what the hole holds.
-        let sixths = (seam_turn(&free.points, &cut.pairs) / (PI / 3.0)).round();
-        if sixths == 0.0 {
-            continue;
-        }
-        let angle = sixths * PI / 3.0;
-        let turn = [angle.cos(), angle.sin()];
-        let Some(flat) = flatten_seamed(&cut.vertices, &cut.triangles, &free, &cut.pairs, turn)
-        else {
-            continue;
+        // Left free, the seam's sides turn by about what the hole holds. (Plus zero: no turn
+        // is 0, not -0.)
+        let sixths = (seam_turn(&free.points, &cut.pairs) / (PI / 3.0)).round() + 0.0;
+        let tube = norm(mean_shift(&free.points, &cut.pairs)) >= WRAPS_ROUND * length(hole)
+            && length(hole) >= TUBE_ENDS * length(outer);
+        // Round a tube whose ends differ, the turn the sides take can lie far between two
+        // multiples; none, a shift, is the other one tried.
+        let turns = match (sixths == 0.0, tube) {
+            (true, false) => vec![],
+            (false, true) => vec![sixths, 0.0],
+            _ => vec![sixths],
         };
-        let seam = PlaneSeam::new(&flat.points, &cut.pairs, turn);
-        // A hole holding negative curvature opens the plane by more than a full turn round
-        // the seam's center: the flattening then lies over itself there, and a lattice laid on
-        // it would be laid twice.
-        if swept_angle(&flat.points, &cut, &loops[outer], seam.center) > 2.0 * PI + 0.5 {
-            continue;
-        }
-        let cv = flat.distortion.length_scale_cv;
-        let better_than = |f: &Flattening, by: f64| cv < by * f.distortion.length_scale_cv;
-        if better_than(uncut, WORTH_A_SEAM)
-            && best.as_ref().is_none_or(|b| better_than(&b.flat, 1.0))
-        {
-            best = Some(Seamed {
-                cut,
-                flat,
-                seam,
-                turn_deg: 60.0 * sixths,
-            });
+        for sixths in turns {
+            let angle = sixths * PI / 3.0;
+            let turn = [angle.cos(), angle.sin()];
+            let Some(flat) = flatten_seamed(&cut.vertices, &cut.triangles, &free, &cut.pairs, turn)
+            else {
+                continue;
+            };
+            let seam = PlaneSeam::new(&flat.points, &cut.pairs, turn);
+            // A hole holding negative curvature opens the plane by more than a full turn round
+            // the seam's center: the flattening then lies over itself there, and a lattice laid
+            // on it would be laid twice.
+            if let Carry::Turn { center, .. } = seam.carry {
+                if swept_angle(&flat.points, &cut, &loops[outer], center) > 2.0 * PI + 0.5 {
+                    continue;
+                }
+            }
+            let cv = flat.distortion.length_scale_cv;
+            if cv < WORTH_A_SEAM * uncut.distortion.length_scale_cv {
+                seamed.push(Seamed {
+                    cut: cut.clone(),
+                    flat,
+                    seam,
+                    turn_deg: 60.0 * sixths,
+                });
+            }
         }
     }
-    best
+    let cv = |s: &Seamed| s.flat.distortion.length_scale_cv;
+    seamed.sort_by(|a, b| cv(a).total_cmp(&cv(b)));
+    seamed
 }
 
 /// The angle the outer border of the cut S sweeps round `center` in the flattening `points`
@@ -319,23 +339,46 @@ pub fn seam_turn(points: &[Point2], pairs: &[(usize, usize)]) -> f64 {
     cross.atan2(dot)
 }
 
+/// The mean step from the seam's right side to its left in the flattening `points`.
+fn mean_shift(points: &[Point2], pairs: &[(usize, usize)]) -> Point2 {
+    let n = pairs.len().max(1) as f64;
+    pairs.iter().fold([0.0, 0.0], |s, &(r, l)| {
+        let d = sub(points[l], points[r]);
+        [s[0] + d[0] / n, s[1] + d[1] / n]
+    })
+}
+
 fn sub(a: Point2, b: Point2) -> Point2 {
     [a[0] - b[0], a[1] - b[1]]
 }
 
-/// The two sides of a seam in the plane, images of each other under a turn about `center`.
+fn norm(a: Point2) -> f64 {
+    a[0].hypot(a[1])
+}
+
+/// How a seam's right side is carried onto its left in the plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Carry {
+    /// A turn, (cos, sin), about `center`: the lattice turns round the hole about a cell's
+    /// center there.
+    Turn { turn: [f64; 2], center: Point2 },
+    /// A shift: S wraps round the hole like a tube, and the lattice, of which the shift is a
+    /// vector, runs round it unturned.
+    Shift(Point2),
+}
+
+/// The two sides of a seam in the plane, images of each other.
 #[derive(Clone, Debug)]
 pub struct PlaneSeam {
-    /// (cos, sin) of the turn taking the right side onto the left.
-    pub turn: [f64; 2],
-    pub center: Point2,
+    pub carry: Carry,
     pub right: Vec<Point2>,
     pub left: Vec<Point2>,
 }
 
 impl PlaneSeam {
-    /// The seam of `pairs` in the flattening `points`, turned by `turn`: its center is the fixed
-    /// point of the turn that best carries the right side onto the left.
+    /// The seam of `pairs` in the flattening `points`, turned by `turn`: about the fixed point
+    /// of the turn that best carries the right side onto the left, or, unturned, by the mean
+    /// shift between the sides.
     pub fn new(points: &[Point2], pairs: &[(usize, usize)], turn: [f64; 2]) -> PlaneSeam {
         let right: Vec<Point2> = pairs.iter().map(|p| points[p.0]).collect();
         let left: Vec<Point2> = pairs.iter().map(|p| points[p.1]).collect();
@@ -350,33 +393,34 @@ impl PlaneSeam {
         let (a, b) = (1.0 - turn[0], turn[1]);
         // (I - R) = [[a, b], [-b, a]], inverse [[a, -b], [b, a]] / (a^2 + b^2).
         let det = a * a + b * b;
-        let center = [(a * t[0] - b * t[1]) / det, (b * t[0] + a * t[1]) / det];
-        PlaneSeam {
-            turn,
-            center,
-            right,
-            left,
-        }
+        let carry = if det < 1e-12 {
+            Carry::Shift(t)
+        } else {
+            let center = [(a * t[0] - b * t[1]) / det, (b * t[0] + a * t[1]) / det];
+            Carry::Turn { turn, center }
+        };
+        PlaneSeam { carry, right, left }
     }
 
-    /// `p` turned about the center: forwards carries the right side onto the left.
-    pub fn turned(&self, p: Point2, forwards: bool) -> Point2 {
-        let r = if forwards {
-            self.turn
-        } else {
-            [self.turn[0], -self.turn[1]]
-        };
-        let q = rotate(r, sub(p, self.center));
-        [q[0] + self.center[0], q[1] + self.center[1]]
+    /// `p` carried across the seam: forwards takes the right side onto the left.
+    pub fn carried(&self, p: Point2, forwards: bool) -> Point2 {
+        let sign = if forwards { 1.0 } else { -1.0 };
+        match self.carry {
+            Carry::Turn { turn, center } => {
+                let q = rotate([turn[0], sign * turn[1]], sub(p, center));
+                [q[0] + center[0], q[1] + center[1]]
+            }
+            Carry::Shift(t) => [p[0] + sign * t[0], p[1] + sign * t[1]],
+        }
     }
 
     /// Where the step from `from` to `to` comes out having crossed the seam: `to` carried to
     /// the other side, or None where the step crosses neither side.
     pub fn across(&self, from: Point2, to: Point2) -> Option<Point2> {
         if crosses(&self.right, from, to) {
-            Some(self.turned(to, true))
+            Some(self.carried(to, true))
         } else if crosses(&self.left, from, to) {
-            Some(self.turned(to, false))
+            Some(self.carried(to, false))
         } else {
             None
         }
@@ -438,7 +482,10 @@ mod tests {
     fn a_bowl_flattens_without_stretch_once_its_lattice_turns_a_sixth() {
         let (vertices, triangles) = ring();
         let whole = flatten(&vertices, &triangles, Flattener::Arap).unwrap();
-        let seamed = round_hole(&vertices, &triangles, &whole).expect("the hole asks a turn");
+        let seamed = round_holes(&vertices, &triangles, &whole)
+            .into_iter()
+            .next()
+            .expect("the hole asks a turn");
         assert_eq!(seamed.turn_deg, 60.0);
         let (cv, cv_whole) = (
             seamed.flat.distortion.length_scale_cv,
@@ -448,7 +495,10 @@ mod tests {
         assert_eq!(seamed.flat.flipped, 0);
         let loops = border_loops(&triangles).unwrap();
         let outer = &loops[outer_loop(&vertices, &loops)];
-        let swept = swept_angle(&seamed.flat.points, &seamed.cut, outer, seamed.seam.center);
+        let Carry::Turn { center, .. } = seamed.seam.carry else {
+            panic!("a turn, not a shift");
+        };
+        let swept = swept_angle(&seamed.flat.points, &seamed.cut, outer, center);
         assert!(
             (swept.to_degrees() - 300.0).abs() < 1e-6,
             "{}",
@@ -456,8 +506,32 @@ mod tests {
         );
         // Its two sides are images of each other under the turn.
         for (r, l) in seamed.seam.right.iter().zip(&seamed.seam.left) {
-            let t = seamed.seam.turned(*r, true);
+            let t = seamed.seam.carried(*r, true);
             assert!((t[0] - l[0]).hypot(t[1] - l[1]) < 1e-6 * whole.area.sqrt());
+        }
+    }
+
+    /// A tube holds a full turn round each end: cut open from end to end it unrolls into a
+    /// strip without stretch, its sides a shift of one circumference apart, and the lattice
+    /// runs round it unturned.
+    #[test]
+    fn a_tube_unrolls_into_a_strip_its_sides_a_shift_apart() {
+        let (radius, height) = (4.0, 10.0);
+        let (vertices, triangles) = crate::generate::tube(radius, height, 90).star_triangulated();
+        let whole = flatten(&vertices, &triangles, Flattener::Arap).unwrap();
+        let seamed = round_holes(&vertices, &triangles, &whole);
+        let first = seamed.first().expect("a tube asks for a seam");
+        assert_eq!(first.turn_deg, 0.0);
+        let Carry::Shift(shift) = first.seam.carry else {
+            panic!("a shift, not a turn");
+        };
+        // The circumference of the polygon the tube's rows are.
+        let around = 90.0 * 2.0 * radius * (PI / 90.0).sin();
+        assert!((norm(shift) - around).abs() < 1e-3 * around, "{shift:?}");
+        assert!(first.flat.distortion.length_scale_cv < 1e-3);
+        for (r, l) in first.seam.right.iter().zip(&first.seam.left) {
+            let s = first.seam.carried(*r, true);
+            assert!((s[0] - l[0]).hypot(s[1] - l[1]) < 1e-6 * around);
         }
     }
 
@@ -469,7 +543,7 @@ mod tests {
             v.z = 0.0;
         }
         let whole = flatten(&vertices, &triangles, Flattener::Arap).unwrap();
-        assert!(round_hole(&vertices, &triangles, &whole).is_none());
+        assert!(round_holes(&vertices, &triangles, &whole).is_empty());
     }
 
     /// A step across a side of the seam comes out turned onto the other side; a step that
@@ -477,15 +551,17 @@ mod tests {
     #[test]
     fn a_step_across_the_seam_comes_out_on_its_other_side() {
         let seam = PlaneSeam {
-            turn: [0.5, 0.75f64.sqrt()],
-            center: [0.0, 0.0],
+            carry: Carry::Turn {
+                turn: [0.5, 0.75f64.sqrt()],
+                center: [0.0, 0.0],
+            },
             right: vec![[1.0, 0.0], [3.0, 0.0]],
             left: vec![[0.5, 0.75f64.sqrt()], [1.5, 3.0 * 0.75f64.sqrt()]],
         };
         let beyond_right = seam.across([2.0, 0.1], [2.0, -0.1]).unwrap();
-        let expected = seam.turned([2.0, -0.1], true);
+        let expected = seam.carried([2.0, -0.1], true);
         assert_eq!(beyond_right, expected);
-        let back = seam.turned(expected, false);
+        let back = seam.carried(expected, false);
         assert!((back[0] - 2.0).abs() < 1e-12 && (back[1] + 0.1).abs() < 1e-12);
         assert!(seam.across([2.0, 0.5], [2.0, 0.3]).is_none());
     }
