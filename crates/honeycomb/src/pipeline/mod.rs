@@ -153,7 +153,8 @@ pub fn pipeline(
         let (made, made_notes) =
             match base_mesh(surface, model_surface, init_options, options, walls) {
                 Ok(made) => made,
-                Err(e) if !last => {
+                // S too curved for the cells asked is so whichever way the grid is laid.
+                Err(e) if !last && !matches!(e, Error::Unsuited(_)) => {
                     notes.push(format!(
                         "{what}: {}; trying {}",
                         message(&e),
@@ -290,9 +291,14 @@ fn more_even_unturned(
                 && again.measures.edge_length_cv < solved.measures.edge_length_cv =>
         {
             again.report.iterations_total += solved.report.iterations_total;
+            let laid = if turn == 0.0 {
+                "run round a tube".to_string()
+            } else {
+                format!("turned by {turn} degrees round a hole")
+            };
             let note = format!(
-                "the grid turned by {turn} degrees round a hole left the cells uneven (edge cv \
-                 {}); laid on S flattened whole they are more even ({})",
+                "the grid {laid} left the cells uneven (edge cv {}); laid on S flattened whole \
+                 they are more even ({})",
                 rounded(solved.measures.edge_length_cv, 3),
                 rounded(again.measures.edge_length_cv, 3)
             );
