@@ -193,7 +193,6 @@ fn bad_meshes_are_rejected() {
         ),
     ];
     for (k, mesh) in cases.iter().enumerate() {
-        eprintln!("DBG {k}: {:?}", Surface::from_mesh(mesh).err());
         assert!(
             matches!(Surface::from_mesh(mesh), Err(Error::Mesh(_))),
             "case {k} accepted"
