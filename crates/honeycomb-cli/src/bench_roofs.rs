@@ -5,7 +5,7 @@
 //! what it cost (closeness to S, iterations); with `--suns`, twelve suns in place of two.
 
 use honeycomb::analysis::sun_light;
-use honeycomb::generate::{design_surface, Shape};
+use honeycomb::generate::{cooling_tower, design_surface, Shape};
 use honeycomb::mesh::{read_mesh, validate_base_mesh, PolyMesh};
 use honeycomb::structure::QuadPattern;
 use honeycomb::{pipeline, Outcome, PipelineOptions, Progress, Surface, Variant, Walls};
@@ -18,7 +18,7 @@ use std::time::Instant;
 pub const DEFAULT_DIR: &str = "../shared/data";
 
 /// The built-in surfaces `--generated` adds: two developables, a dome, a saddle, a wave, and a
-/// developable round a hole.
+/// developable round a hole; then a cooling tower (a tube, [`Source::Tower`]).
 const GENERATED: [Shape; 6] = [
     Shape::Cylinder,
     Shape::Cone,
@@ -192,6 +192,7 @@ pub fn run(args: RoofsArgs) -> Result<()> {
             let name = format!("{shape:?}").to_lowercase();
             surfaces.push((name, Source::Generated(shape)));
         }
+        surfaces.push(("tower".into(), Source::Tower));
     }
     let dir = args
         .dir
@@ -322,6 +323,8 @@ fn print_variant_row(row: &Row, json: bool) -> Result<()> {
 enum Source {
     File(PathBuf),
     Generated(Shape),
+    /// The built-in cooling tower (a tube).
+    Tower,
 }
 
 /// The mesh files in `dir` (OBJ, OFF, PLY), by name.
@@ -376,6 +379,7 @@ fn bench_one(
     let start = Instant::now();
     let surface: PolyMesh = match source {
         Source::Generated(shape) => design_surface(*shape),
+        Source::Tower => cooling_tower(10.0, 120),
         Source::File(path) => match read_mesh(path) {
             Ok(loaded) => loaded.mesh,
             Err(e) => return row("refused", Some(e.to_string()), None),
