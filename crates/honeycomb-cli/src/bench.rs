@@ -63,7 +63,8 @@ pub struct Args {
     /// With --roofs: cells asked for, comma separated.
     #[arg(long, value_delimiter = ',', default_values_t = [1500], requires = "roofs")]
     pub cells: Vec<usize>,
-    /// With --roofs: the built-in cylinder, cone, dome, saddle and wave too.
+    /// With --roofs: the built-in cylinder, cone, dome, saddle, wave, ring and a cooling tower
+    /// too.
     #[arg(long, requires = "roofs")]
     pub generated: bool,
     /// With --roofs: how the walls stand (as `pipeline --walls`).
