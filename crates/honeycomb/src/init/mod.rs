@@ -1134,92 +1134,47 @@ fn one_piece(
     cells: &[(i64, i64)],
     corners_of: &HashMap<(i64, i64), [Corner; 6]>,
 ) -> Vec<(i64, i64)> {
+    let edge = |c: &[Corner; 6], k: usize| {
+        let (a, b) = (c[k], c[(k + 1) % 6]);
+        (a.min(b), a.max(b))
+    };
     let mut kept = cells.to_vec();
     loop {
-        let edge = |c: &[Corner; 6], k: usize| {
-            let (a, b) = (c[k], c[(k + 1) % 6]);
-            if a < b {
-                (a, b)
-            } else {
-                (b, a)
-            }
-        };
         let mut by_edge: HashMap<(Corner, Corner), Vec<usize>> = HashMap::new();
+        let mut round: HashMap<Corner, Vec<usize>> = HashMap::new();
         for (n, cell) in kept.iter().enumerate() {
             for k in 0..6 {
                 by_edge
                     .entry(edge(&corners_of[cell], k))
                     .or_default()
                     .push(n);
+                round.entry(corners_of[cell][k]).or_default().push(n);
             }
         }
-        // Pieces joined through shared edges, and the cells round each corner likewise.
+        // The pieces joined through shared edges: all but the largest go.
         let mut piece: Vec<usize> = (0..kept.len()).collect();
-        fn root(piece: &mut [usize], mut n: usize) -> usize {
-            while piece[n] != n {
-                piece[n] = piece[piece[n]];
-                n = piece[n];
-            }
-            n
-        }
         for sharing in by_edge.values() {
             for w in sharing.windows(2) {
-                let (a, b) = (root(&mut piece, w[0]), root(&mut piece, w[1]));
-                piece[a] = b;
+                join(&mut piece, w[0], w[1]);
             }
         }
-        let mut sizes: HashMap<usize, usize> = HashMap::new();
-        for n in 0..kept.len() {
-            *sizes.entry(root(&mut piece, n)).or_default() += 1;
-        }
-        let Some((&biggest, _)) = sizes.iter().max_by_key(|&(&r, &size)| (size, Reverse(r))) else {
-            return kept;
-        };
-        let mut drop = vec![false; kept.len()];
-        for (n, d) in drop.iter_mut().enumerate() {
-            *d = root(&mut piece, n) != biggest;
-        }
-        let mut round: HashMap<Corner, Vec<usize>> = HashMap::new();
-        for (n, cell) in kept.iter().enumerate() {
-            for c in corners_of[cell] {
-                round.entry(c).or_default().push(n);
-            }
-        }
+        let mut drop = all_but_largest(&mut piece);
+        // Round each corner, the cells joined through the edges that end there: where they
+        // make two groups, all but the largest go.
         for (corner, sharing) in &round {
-            // The cells at this corner joined through the edges that end there.
-            let mut fan: HashMap<usize, usize> = sharing.iter().map(|&n| (n, n)).collect();
-            let find = |fan: &HashMap<usize, usize>, mut n: usize| {
-                while fan[&n] != n {
-                    n = fan[&n];
-                }
-                n
-            };
-            for &n in sharing {
+            let mut group: Vec<usize> = (0..sharing.len()).collect();
+            for (a, &n) in sharing.iter().enumerate() {
                 let c = &corners_of[&kept[n]];
                 for k in (0..6).filter(|&k| c[k] == *corner || c[(k + 1) % 6] == *corner) {
-                    for &m in &by_edge[&edge(c, k)] {
-                        let (a, b) = (find(&fan, n), find(&fan, m));
-                        if a != b {
-                            fan.insert(a, b);
+                    for m in &by_edge[&edge(c, k)] {
+                        if let Some(b) = sharing.iter().position(|x| x == m) {
+                            join(&mut group, a, b);
                         }
                     }
                 }
             }
-            let mut groups: HashMap<usize, Vec<usize>> = HashMap::new();
-            for &n in sharing {
-                groups.entry(find(&fan, n)).or_default().push(n);
-            }
-            // The largest group stays (of equals, the one holding the first cell).
-            let stays = groups
-                .values()
-                .max_by_key(|g| (g.len(), Reverse(g.iter().min().copied())))
-                .and_then(|g| g.first().map(|&n| find(&fan, n)));
-            for (&root, group) in &groups {
-                if Some(root) != stays {
-                    for &n in group {
-                        drop[n] = true;
-                    }
-                }
+            for (a, gone) in all_but_largest(&mut group).into_iter().enumerate() {
+                drop[sharing[a]] |= gone;
             }
         }
         if !drop.contains(&true) {
@@ -1232,6 +1187,35 @@ fn one_piece(
             .map(|(&c, _)| c)
             .collect();
     }
+}
+
+/// The class of `n` in the union-find forest `parent`.
+fn class_of(parent: &mut [usize], mut n: usize) -> usize {
+    while parent[n] != n {
+        parent[n] = parent[parent[n]];
+        n = parent[n];
+    }
+    n
+}
+
+/// Joins the classes of `a` and `b`.
+fn join(parent: &mut [usize], a: usize, b: usize) {
+    let (a, b) = (class_of(parent, a), class_of(parent, b));
+    parent[a] = b;
+}
+
+/// Per member of the forest `parent`: whether it lies outside the largest class (of equals,
+/// the one holding the first member).
+fn all_but_largest(parent: &mut [usize]) -> Vec<bool> {
+    let classes: Vec<usize> = (0..parent.len()).map(|n| class_of(parent, n)).collect();
+    let mut sizes = vec![0usize; parent.len()];
+    for &c in &classes {
+        sizes[c] += 1;
+    }
+    let largest = (0..classes.len())
+        .max_by_key(|&n| (sizes[classes[n]], Reverse(n)))
+        .map(|n| classes[n]);
+    classes.iter().map(|&c| Some(c) != largest).collect()
 }
 
 #[allow(clippy::too_many_arguments)]
