@@ -83,7 +83,7 @@ const WRAPS_ROUND: f64 = 0.5;
 /// hole down a funnel in a wide roof is wrapped round too, but the lattice must fit the roof.
 const TUBE_ENDS: f64 = 0.4;
 
-/// Holes tried at most, the longest first: each costs two flattenings.
+/// Holes tried at most, the longest first: each costs two flattenings (three round a tube).
 const MAX_HOLES_TRIED: usize = 4;
 
 /// The outer border: the longest loop.
