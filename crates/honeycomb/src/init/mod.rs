@@ -550,26 +550,20 @@ fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Ini
                 None => lay(&whole)?,
             };
             let counted = matches!(options.size, CellSize::Cells(_));
-            let made = if options.flattener == Flattener::Arap
+            let (made, flat) = if options.flattener == Flattener::Arap
                 && flat.flattener == Flattener::Arap
                 && counted
                 && covered(&made, &flat) < MIN_COVERED_SHARE
             {
                 // The refinement folded the domain over itself and cut it apart.
                 let lscm = flatten(&vertices, &triangles, Flattener::Lscm)?;
-                let made = lay(&Domain::whole(&vertices, &triangles, &lscm))?;
-                let share = covered(&made, &lscm);
-                (share >= MIN_LAID_SHARE)
-                    .then_some(made)
-                    .ok_or((share, lscm))
+                (lay(&Domain::whole(&vertices, &triangles, &lscm))?, lscm)
             } else {
-                let share = covered(&made, &flat);
-                (!counted || share >= MIN_LAID_SHARE)
-                    .then_some(made)
-                    .ok_or((share, flat))
+                (made, flat)
             };
-            made.map_err(|(share, flat)| {
-                Error::Mesh(format!(
+            let share = covered(&made, &flat);
+            if counted && share < MIN_LAID_SHARE {
+                return Err(Error::Mesh(format!(
                     "the cells asked for cover {}% of S only: its flattening ({}) shrinks \
                      areas down to {} and stretches them up to {} times, so that most of S \
                      lies in a corner of the plane (S wraps around a hole, or curves too much \
@@ -578,8 +572,9 @@ fn laid(surface: &PolyMesh, options: &InitOptions, start: Instant) -> Result<Ini
                     format!("{:?}", flat.flattener).to_lowercase(),
                     rounded(flat.distortion.area_scale_min, 3),
                     rounded(flat.distortion.area_scale_max, 3),
-                ))
-            })?
+                )));
+            }
+            made
         }
     };
     Ok(made)
