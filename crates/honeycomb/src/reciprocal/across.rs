@@ -131,6 +131,8 @@ pub fn walls_across(
         })
     };
     let mut drops = 0;
+    // Where the last placement put the vertices that are kept.
+    let mut placed_before: Option<Vec<Vec3>> = None;
     let mut unconverged_before = false;
     let placement = PlacementOptions {
         edges_along_s: options.targets != AxisTargets::Normals,
@@ -169,6 +171,7 @@ pub fn walls_across(
         points = field.points;
         let placed = place(
             &mesh,
+            placed_before.as_deref(),
             &conn,
             &sheet,
             &points,
@@ -233,6 +236,7 @@ pub fn walls_across(
         if let Some(axes) = &mut given_axes {
             *axes = kept.iter().map(|&v| axes[v]).collect();
         }
+        placed_before = Some(kept.iter().map(|&v| placed.vertices[v]).collect());
         model_base = without_cells(&model_base, &broken);
         mesh = rest;
         conn = rest_conn;

@@ -85,9 +85,12 @@ fn node_lines(sheet: &Sheet, points: &[Vec3]) -> Vec<([[f64; 3]; 3], Vec3)> {
 }
 
 /// Places `mesh` (its start) on the walls of `sheet` at `points`, close to `surface`; all in
-/// one frame.
+/// one frame. `from`: where a placement on the same walls put the vertices (the rest of a
+/// mesh whose broken cells were dropped), to start from there rather than from `mesh`; the
+/// vertices are still held close to `mesh`.
 pub fn place(
     mesh: &PolyMesh,
+    from: Option<&[Vec3]>,
     conn: &Connectivity,
     sheet: &Sheet,
     points: &[Vec3],
@@ -137,25 +140,26 @@ pub fn place(
             ([a, b], if d.dot(start) < 0.0 { -d } else { d })
         })
         .collect();
-    let anchors = |boundary: bool| {
+    let anchors = |boundary: bool, at: &[Vec3]| {
         let targets = SharedTargets::new(nv);
         targets.set(
             (0..nv)
-                .map(|v| (conn.is_boundary_vertex[v] == boundary).then_some(mesh.vertices[v]))
+                .map(|v| (conn.is_boundary_vertex[v] == boundary).then_some(at[v]))
                 .collect(),
         );
         targets
     };
-    let anchor_family = |boundary: bool, weight| VertexTargets {
+    let anchor_family = |boundary: bool, weight, at: &[Vec3]| VertexTargets {
         layout,
-        targets: anchors(boundary),
+        targets: anchors(boundary, at),
         weight,
     };
+    let start_at = from.unwrap_or(&mesh.vertices);
     // The start: potentials and slides that best reproduce the base mesh (no closeness yet,
     // whose tangent planes need vertices near S).
     let start_families: Vec<Box<dyn Constraint>> = vec![
-        Box::new(anchor_family(false, 1.0)),
-        Box::new(anchor_family(true, 1.0)),
+        Box::new(anchor_family(false, 1.0, start_at)),
+        Box::new(anchor_family(true, 1.0, start_at)),
     ];
     let mut y = vec![0.0; unknowns];
     let exact = SolverOptions {
@@ -179,8 +183,8 @@ pub fn place(
             edges: edge_vectors,
             weight: options.evenness,
         }),
-        Box::new(anchor_family(false, options.anchor)),
-        Box::new(anchor_family(true, options.boundary_anchor)),
+        Box::new(anchor_family(false, options.anchor, &mesh.vertices)),
+        Box::new(anchor_family(true, options.boundary_anchor, &mesh.vertices)),
     ];
     let mut solver = GuidedProjection::with_substitution(families, substitution, None, &[])?;
     let solver_options = SolverOptions {
@@ -191,8 +195,14 @@ pub fn place(
         cancel: options.cancel.clone(),
         ..SolverOptions::default()
     };
-    // The iterations asked for, then more while a vertex stays off S (the tangent planes of
-    // the closeness move as the vertices do), up to twice as many.
+    // The iterations asked for (one from where a placement left the vertices), then more
+    // while a vertex stays off S (the tangent planes of the closeness move as the vertices
+    // do), up to twice as many.
+    let least = if from.is_some() {
+        1
+    } else {
+        options.iterations
+    };
     let mut state = SolveState::new(solver_options.eps);
     let mut vertices = Vec::new();
     while state.iterations() < 2 * options.iterations.max(1) {
@@ -203,7 +213,7 @@ pub fn place(
         let x = solver.family_unknowns(&y);
         vertices = x.chunks(3).map(Vec3::from_slice).collect();
         let farthest = slide_onto(surface, &mut vertices, &axes, mean_edge);
-        if state.iterations() >= options.iterations && farthest <= ON_SURFACE * mean_edge {
+        if state.iterations() >= least && farthest <= ON_SURFACE * mean_edge {
             break;
         }
     }
@@ -258,6 +268,54 @@ fn slid(surface: &Surface, p: &mut Vec3, axis: Vec3, limit: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::generate::hex_disk;
+    use crate::mesh::validate_base_mesh;
+
+    /// Placed on a plane from where an earlier placement on the same walls left the vertices,
+    /// the solve starts at its end: it takes a single step besides its start (a placement from
+    /// the base mesh takes its three at least) and puts every vertex where that one did.
+    #[test]
+    fn a_placement_goes_on_from_where_one_left_the_vertices() {
+        let mesh = hex_disk(4.0);
+        let conn = validate_base_mesh(&mesh).unwrap();
+        let sheet = Sheet::new(&mesh, &conn).unwrap();
+        // The sheet folded along x = 0, each half turned by 20 degrees: two families of axes.
+        let (c, s) = (20f64.to_radians().cos(), 20f64.to_radians().sin());
+        let points: Vec<Vec3> = sheet
+            .initial_points(&mesh, &conn, |_| Vec3::new(0.0, 0.0, 1.0))
+            .iter()
+            .map(|p| Vec3::new(p.x * c, p.y, p.x.abs() * s))
+            .collect();
+        let plane = PolyMesh::new(
+            [(-20.0, -20.0), (20.0, -20.0), (20.0, 20.0), (-20.0, 20.0)]
+                .map(|(x, y)| Vec3::new(x, y, 0.0))
+                .to_vec(),
+            vec![vec![0, 1, 2, 3]],
+        );
+        let surface = Surface::from_mesh(&plane).unwrap();
+        let options = PlacementOptions::default();
+        let place_from = |from: Option<&[Vec3]>| {
+            place(
+                &mesh,
+                from,
+                &conn,
+                &sheet,
+                &points,
+                &surface,
+                &options,
+                &mut |_| {},
+            )
+            .unwrap()
+        };
+        let first = place_from(None);
+        assert_eq!(first.solve.iterations, 1 + options.iterations);
+        let again = place_from(Some(&first.vertices));
+        assert_eq!(again.solve.iterations, 2);
+        for (v, (a, b)) in again.vertices.iter().zip(&first.vertices).enumerate() {
+            assert!((*a - *b).norm() < 1e-6, "vertex {v}: {a:?} against {b:?}");
+            assert!(a.z.abs() < 1e-9, "vertex {v} off the plane: {a:?}");
+        }
+    }
 
     /// Vertices above S slide down their axes onto it; one beyond S's border, whose foot is on
     /// the border, stays, and its distance is the farthest. On two threads as on one.
