@@ -4,7 +4,8 @@
 //! the cells that stand out beyond S's border trimmed.
 
 use super::{
-    fit_axis_field, place, trim_overhang, AxisFieldOptions, AxisTargets, PlacementOptions, Sheet,
+    fit_axis_field, place, trim_overhang, AxisFieldOptions, AxisTargets, FittedSheet,
+    PlacementOptions, Sheet,
 };
 use crate::error::Result;
 use crate::geometry::Vec3;
@@ -173,8 +174,10 @@ pub fn walls_across(
             &mesh,
             placed_before.as_deref(),
             &conn,
-            &sheet,
-            &points,
+            FittedSheet {
+                sheet: &sheet,
+                points: &points,
+            },
             &normalized,
             &placement,
             &mut |i| progress(Stage::Placement, i),

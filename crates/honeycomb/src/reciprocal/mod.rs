@@ -24,7 +24,7 @@ mod trim;
 
 pub use across::{walls_across, Across, AcrossOptions, Stage, Start};
 pub use axis_field::{fit_axis_field, AxisFieldOptions};
-pub use placement::{place, PlacementOptions};
+pub use placement::{place, FittedSheet, PlacementOptions};
 pub use sheet::Sheet;
 pub use targets::{AxisTargets, Turn, SHADING_TURNS};
 pub use trim::{trim_drawn_out, trim_overhang, DRAWN_OUT, ON_S};

@@ -84,16 +84,22 @@ fn node_lines(sheet: &Sheet, points: &[Vec3]) -> Vec<([[f64; 3]; 3], Vec3)> {
         .collect()
 }
 
-/// Places `mesh` (its start) on the walls of `sheet` at `points`, close to `surface`; all in
-/// one frame. `from`: where a placement on the same walls put the vertices (the rest of a
-/// mesh whose broken cells were dropped), to start from there rather than from `mesh`; the
+/// A sheet and its points: the walls a placement puts the vertices on.
+#[derive(Clone, Copy)]
+pub struct FittedSheet<'a> {
+    pub sheet: &'a Sheet,
+    pub points: &'a [Vec3],
+}
+
+/// Places `mesh` (its start) on the walls of a fitted sheet, close to `surface`; all in one
+/// frame. `from`: where a placement on the same walls put the vertices (the rest of a mesh
+/// whose broken cells were dropped), to start from there rather than from `mesh`; the
 /// vertices are still held close to `mesh`.
 pub fn place(
     mesh: &PolyMesh,
     from: Option<&[Vec3]>,
     conn: &Connectivity,
-    sheet: &Sheet,
-    points: &[Vec3],
+    FittedSheet { sheet, points }: FittedSheet,
     surface: &Surface,
     options: &PlacementOptions,
     progress: &mut dyn FnMut(&IterationInfo),
@@ -299,8 +305,10 @@ mod tests {
                 &mesh,
                 from,
                 &conn,
-                &sheet,
-                &points,
+                FittedSheet {
+                    sheet: &sheet,
+                    points: &points,
+                },
                 &surface,
                 &options,
                 &mut |_| {},

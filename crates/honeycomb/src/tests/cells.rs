@@ -46,8 +46,11 @@ fn uneven_cells_of_walls_across_are_evened() {
     let (lean, parallel) = (m.axis_normal_deg.mean, m.parallel_baseline_deg.mean);
     assert!(lean <= 0.5 * parallel, "lean {lean} against {parallel}");
     // The steps even the cells the way that leans the axes least: hardly more than fitted.
+    // Which way a round goes varies with the last digits of the fit (from 0.97 to 1.10 times
+    // the fitted lean on bowls of 1.4 to 1.7 r^2); steps not guided towards S's normals lean
+    // 1.13-1.22 times it.
     let fitted_lean = fitted.axis_normal_deg.mean;
-    assert!(lean <= 1.05 * fitted_lean, "lean {fitted_lean} -> {lean}");
+    assert!(lean <= 1.1 * fitted_lean, "lean {fitted_lean} -> {lean}");
     assert!(m.axis_normal_deg.p95 < m.parallel_baseline_deg.p95);
     assert!(
         evened
