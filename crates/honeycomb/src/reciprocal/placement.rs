@@ -161,8 +161,8 @@ pub fn place(
         weight,
     };
     let start_at = from.unwrap_or(&mesh.vertices);
-    // The start: potentials and slides that best reproduce the base mesh (no closeness yet,
-    // whose tangent planes need vertices near S).
+    // The start: potentials and slides that best reproduce the base mesh, or where a placement
+    // left the vertices (no closeness yet, whose tangent planes need vertices near S).
     let start_families: Vec<Box<dyn Constraint>> = vec![
         Box::new(anchor_family(false, 1.0, start_at)),
         Box::new(anchor_family(true, 1.0, start_at)),
