@@ -33,6 +33,7 @@ use crate::mesh::{
     validate_base_mesh, validate_repaired_surface, validate_surface_mesh, Connectivity, PolyMesh,
 };
 use crate::surface::Surface;
+use field::UnionFind;
 use locate::Locator;
 use serde::Serialize;
 use std::cmp::Reverse;
@@ -1147,28 +1148,29 @@ fn one_piece(
             }
         }
         // The pieces joined through shared edges: all but the largest go.
-        let mut piece: Vec<usize> = (0..kept.len()).collect();
+        let mut piece = UnionFind::new(kept.len());
         for sharing in by_edge.values() {
             for w in sharing.windows(2) {
-                join(&mut piece, w[0], w[1]);
+                piece.union(w[0], w[1]);
             }
         }
-        let mut drop = all_but_largest(&mut piece);
+        let mut drop = all_but_largest(&mut piece, kept.len());
         // Round each corner, the cells joined through the edges that end there: where they
         // make two groups, all but the largest go.
         for (corner, sharing) in &round {
-            let mut group: Vec<usize> = (0..sharing.len()).collect();
+            let mut group = UnionFind::new(sharing.len());
             for (a, &n) in sharing.iter().enumerate() {
                 let c = &corners_of[&kept[n]];
                 for k in (0..6).filter(|&k| c[k] == *corner || c[(k + 1) % 6] == *corner) {
                     for m in &by_edge[&edge(c, k)] {
                         if let Some(b) = sharing.iter().position(|x| x == m) {
-                            join(&mut group, a, b);
+                            group.union(a, b);
                         }
                     }
                 }
             }
-            for (a, gone) in all_but_largest(&mut group).into_iter().enumerate() {
+            let gone = all_but_largest(&mut group, sharing.len());
+            for (a, gone) in gone.into_iter().enumerate() {
                 drop[sharing[a]] |= gone;
             }
         }
@@ -1184,32 +1186,17 @@ fn one_piece(
     }
 }
 
-/// The class of `n` in the union-find forest `parent`.
-fn class_of(parent: &mut [usize], mut n: usize) -> usize {
-    while parent[n] != n {
-        parent[n] = parent[parent[n]];
-        n = parent[n];
-    }
-    n
-}
-
-/// Joins the classes of `a` and `b`.
-fn join(parent: &mut [usize], a: usize, b: usize) {
-    let (a, b) = (class_of(parent, a), class_of(parent, b));
-    parent[a] = b;
-}
-
-/// Per member of the forest `parent`: whether it lies outside the largest class (of equals,
-/// the one holding the first member).
-fn all_but_largest(parent: &mut [usize]) -> Vec<bool> {
-    let classes: Vec<usize> = (0..parent.len()).map(|n| class_of(parent, n)).collect();
-    let mut sizes = vec![0usize; parent.len()];
+/// Per member `0..n` of `sets`: whether it lies outside the largest set (of equals, the one
+/// holding the first member).
+fn all_but_largest(sets: &mut UnionFind, n: usize) -> Vec<bool> {
+    let classes: Vec<usize> = (0..n).map(|k| sets.find(k)).collect();
+    let mut sizes = vec![0usize; n];
     for &c in &classes {
         sizes[c] += 1;
     }
-    let largest = (0..classes.len())
-        .max_by_key(|&n| (sizes[classes[n]], Reverse(n)))
-        .map(|n| classes[n]);
+    let largest = (0..n)
+        .max_by_key(|&k| (sizes[classes[k]], Reverse(k)))
+        .map(|k| classes[k]);
     classes.iter().map(|&c| Some(c) != largest).collect()
 }
 

@@ -29,6 +29,8 @@ use hierarchy::Level;
 use sampling::Sampling;
 use tangent::SQRT3;
 
+pub(crate) use extract::UnionFind;
+
 /// Samples are refined until no edge is longer than this share of the lattice spacing. Any
 /// point of such triangles is within 0.7 / sqrt 3 = 0.4 spacings of a sample, so each lattice
 /// point has a sample nearer to it than to any other lattice point. Denser samples gave more
