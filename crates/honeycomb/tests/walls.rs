@@ -189,6 +189,15 @@ fn uniform_walls_on_a_surface_that_folds_over_in_plan_are_walls_across() {
     );
 }
 
+/// `init`'s base mesh on `surface` (as `options` ask) laid round its hole, closing round it
+/// as S does (two border loops): the lattice's turn round the hole and the cells' edge cv.
+fn laid_round_its_hole(surface: &PolyMesh, options: &InitOptions) -> (Option<f64>, f64) {
+    let laid = init(surface, options).unwrap();
+    assert_eq!(border_loops(&laid.base), 2);
+    let flat = laid.report.flat.as_ref().expect("a flattening");
+    (flat.hole_turn_deg, laid.report.edge_length_cv)
+}
+
 /// The pipeline at `cells` on `surface` (named `name`), which has one hole: clean, and still
 /// round its hole (two border loops); with what to call it in a message.
 fn clean_round_its_hole(surface: &PolyMesh, cells: usize, name: &str) -> (Outcome, String) {
@@ -206,15 +215,9 @@ fn clean_round_its_hole(surface: &PolyMesh, cells: usize, name: &str) -> (Outcom
 #[test]
 fn a_bowl_round_a_hole_turns_its_lattice_and_stands_its_walls_along_the_normals() {
     let surface = design_surface(Shape::Ring);
-    let laid = init(&surface, &InitOptions::new(CellSize::Cells(750))).unwrap();
-    let flat = laid.report.flat.as_ref().expect("a flattening");
-    assert_eq!(flat.hole_turn_deg, Some(60.0));
-    assert!(
-        laid.report.edge_length_cv < 0.01,
-        "{}",
-        laid.report.edge_length_cv
-    );
-    assert_eq!(border_loops(&laid.base), 2);
+    let (turn, cv) = laid_round_its_hole(&surface, &InitOptions::new(CellSize::Cells(750)));
+    assert_eq!(turn, Some(60.0));
+    assert!(cv < 0.01, "{cv}");
     for cells in [750, 1500] {
         let (made, what) = clean_round_its_hole(&surface, cells, "ring");
         let (lean, parallel) = (
@@ -239,16 +242,10 @@ fn a_bowl_round_a_hole_turns_its_lattice_and_stands_its_walls_along_the_normals(
 #[test]
 fn a_cooling_tower_wraps_its_lattice_round_and_stands_its_walls_across() {
     let surface = cooling_tower(10.0, 120);
-    let laid = init(&surface, &InitOptions::new(CellSize::Cells(750))).unwrap();
-    let flat = laid.report.flat.as_ref().expect("a flattening");
-    let turn = flat.hole_turn_deg.expect("a seam from end to end");
+    let (turn, cv) = laid_round_its_hole(&surface, &InitOptions::new(CellSize::Cells(750)));
+    let turn = turn.expect("a seam from end to end");
     assert_eq!(turn % 60.0, 0.0, "{turn}");
-    assert_eq!(border_loops(&laid.base), 2);
-    assert!(
-        laid.report.edge_length_cv < 0.1,
-        "{}",
-        laid.report.edge_length_cv
-    );
+    assert!(cv < 0.1, "{cv}");
     for cells in [750, 1500] {
         let (made, what) = clean_round_its_hole(&surface, cells, "cooling tower");
         let (lean, parallel) = (
@@ -272,17 +269,15 @@ fn a_cooling_tower_wraps_its_lattice_round_and_stands_its_walls_across() {
 fn a_band_round_a_hole_unrolls_and_its_walls_stand_along_the_normals() {
     let radius = 5.0;
     let band = tube(radius, 3.0, 120);
-    let laid = init(
+    let (turn, cv) = laid_round_its_hole(
         &band,
         &InitOptions {
             flattener: Flattener::Arap,
             ..InitOptions::new(CellSize::Cells(750))
         },
-    )
-    .unwrap();
-    let flat = laid.report.flat.as_ref().expect("a flattening");
-    assert_eq!(flat.hole_turn_deg, Some(0.0));
-    assert!(laid.report.edge_length_cv < 0.01);
+    );
+    assert_eq!(turn, Some(0.0));
+    assert!(cv < 0.01, "{cv}");
     let unrolled = run(&band, 750);
     assert_clean(&unrolled, "band", 750);
     assert_eq!(border_loops(&unrolled.honeycomb.base), 2);
