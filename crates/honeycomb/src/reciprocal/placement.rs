@@ -20,8 +20,14 @@ use crate::solve::{
 };
 use crate::surface::{Surface, PARALLEL_QUERIES_FROM};
 
-/// Placement goes on while a vertex is farther than this from S (mean edge lengths).
+/// Placement goes on while a vertex within S's border is farther than this from S (mean edge
+/// lengths)...
 const ON_SURFACE: f64 = 0.01;
+/// ...or one beyond the border is farther than this from it. The closeness holds such a vertex
+/// only while it is beyond, so it swings in and out from one iteration to the next and would
+/// never come within `ON_SURFACE`; the placement stops where the swing leaves it near the
+/// border, and the cells that stand out beyond it are trimmed afterwards.
+const NEAR_BORDER: f64 = 0.3;
 
 #[derive(Clone, Debug)]
 pub struct PlacementOptions {
@@ -218,8 +224,8 @@ pub fn place(
         }
         let x = solver.family_unknowns(&y);
         vertices = x.chunks(3).map(Vec3::from_slice).collect();
-        let farthest = slide_onto(surface, &mut vertices, &axes, mean_edge);
-        if state.iterations() >= least && farthest <= ON_SURFACE * mean_edge {
+        let off = slide_onto(surface, &mut vertices, &axes, mean_edge);
+        if state.iterations() >= least && off.settled(mean_edge) {
             break;
         }
     }
@@ -236,25 +242,49 @@ pub fn place(
 /// order of its square.
 const SLID: f64 = 1e-7;
 
+/// How far the vertices are from S: the farthest of those whose closest point on S is inside
+/// its border, and of those beyond it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Off {
+    pub within: f64,
+    pub beyond: f64,
+}
+
+impl Off {
+    /// Whether a placement may stop: every vertex within S's border on S, every one beyond
+    /// it near the border (both in units of `mean_edge`).
+    fn settled(&self, mean_edge: f64) -> bool {
+        self.within <= ON_SURFACE * mean_edge && self.beyond <= NEAR_BORDER * mean_edge
+    }
+}
+
 /// Moves each vertex along its axis onto `surface` (a few Newton steps on its signed distance
-/// to the tangent plane at its closest point), never further than `limit` in one step.
-/// Returns the largest distance of a vertex from S afterwards.
-pub fn slide_onto(surface: &Surface, vertices: &mut [Vec3], axes: &[Vec3], limit: f64) -> f64 {
-    let mut moved: Vec<(Vec3, f64)> = vertices.iter().map(|&p| (p, 0.0)).collect();
+/// to the tangent plane at its closest point), never further than `limit` in one step; a
+/// vertex beyond S's border stays. Returns how far the vertices are from S afterwards.
+pub fn slide_onto(surface: &Surface, vertices: &mut [Vec3], axes: &[Vec3], limit: f64) -> Off {
+    let mut moved: Vec<(Vec3, f64, bool)> = vertices.iter().map(|&p| (p, 0.0, false)).collect();
     in_halves(&mut moved, PARALLEL_QUERIES_FROM, |first, part| {
-        for (k, (p, distance)) in part.iter_mut().enumerate() {
-            *distance = slid(surface, p, axes[first + k], limit);
+        for (k, (p, distance, beyond)) in part.iter_mut().enumerate() {
+            (*distance, *beyond) = slid(surface, p, axes[first + k], limit);
         }
     });
-    for (v, (p, _)) in vertices.iter_mut().zip(&moved) {
-        *v = *p;
+    let mut off = Off::default();
+    for (v, &(p, distance, beyond)) in vertices.iter_mut().zip(&moved) {
+        *v = p;
+        let farthest = if beyond {
+            &mut off.beyond
+        } else {
+            &mut off.within
+        };
+        *farthest = farthest.max(distance);
     }
-    moved.iter().map(|m| m.1).fold(0.0, f64::max)
+    off
 }
 
 /// `p` slid along `axis` onto `surface` (see [`slide_onto`]); its distance from S then (at most
-/// that before a last step of less than [`SLID`] limits).
-fn slid(surface: &Surface, p: &mut Vec3, axis: Vec3, limit: f64) -> f64 {
+/// that before a last step of less than [`SLID`] limits), and whether its closest point is on
+/// S's border.
+fn slid(surface: &Surface, p: &mut Vec3, axis: Vec3, limit: f64) -> (f64, bool) {
     let mut c = surface.closest_point(*p);
     for _ in 0..6 {
         let along = axis.dot(c.normal);
@@ -264,11 +294,11 @@ fn slid(surface: &Surface, p: &mut Vec3, axis: Vec3, limit: f64) -> f64 {
         let step = (-(*p - c.point).dot(c.normal) / along).clamp(-limit, limit);
         *p += axis * step;
         if step.abs() < SLID * limit {
-            return c.distance;
+            return (c.distance, c.on_boundary);
         }
         c = surface.closest_point(*p);
     }
-    c.distance
+    (c.distance, c.on_boundary)
 }
 
 #[cfg(test)]
@@ -325,8 +355,21 @@ mod tests {
         }
     }
 
+    /// A placement stops with every vertex within S's border on it and those beyond it near
+    /// the border (where a swing leaves them), not while one within is off S or one beyond
+    /// is far out.
+    #[test]
+    fn a_placement_settles_with_the_vertices_beyond_the_border_near_it() {
+        let edge = 2.0;
+        let off = |within: f64, beyond: f64| Off { within, beyond }.settled(edge);
+        assert!(off(0.0, 0.0));
+        assert!(off(0.5 * ON_SURFACE * edge, 0.9 * NEAR_BORDER * edge));
+        assert!(!off(2.0 * ON_SURFACE * edge, 0.0));
+        assert!(!off(0.0, 1.1 * NEAR_BORDER * edge));
+    }
+
     /// Vertices above S slide down their axes onto it; one beyond S's border, whose foot is on
-    /// the border, stays, and its distance is the farthest. On two threads as on one.
+    /// the border, stays, and its distance is told apart. On two threads as on one.
     #[test]
     fn vertices_slide_onto_s_along_their_axes() {
         let surface = Surface::from_mesh(&PolyMesh::unit_square()).unwrap();
@@ -339,8 +382,9 @@ mod tests {
             let mut axes = vec![tilted; count];
             axes[count - 1] = Vec3::new(0.0, 0.0, 1.0);
             let start = vertices.clone();
-            let farthest = slide_onto(&surface, &mut vertices, &axes, 1.0);
-            assert!((farthest - 0.2).abs() < 1e-12, "{count}: {farthest}");
+            let off = slide_onto(&surface, &mut vertices, &axes, 1.0);
+            assert!(off.within < 1e-12, "{count}: {off:?}");
+            assert!((off.beyond - 0.2).abs() < 1e-12, "{count}: {off:?}");
             assert_eq!(vertices[count - 1], start[count - 1]);
             for (p, s) in vertices.iter().zip(&start).take(count - 1) {
                 assert!(p.z.abs() < 1e-12, "{p:?}");
