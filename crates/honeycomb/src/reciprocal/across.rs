@@ -85,7 +85,8 @@ pub enum Stage {
 /// mesh that is not exact (a few steps of the guided projection from one), model units.
 #[derive(Clone, Copy)]
 pub struct Start<'a> {
-    /// Its vertices, where the placement starts and which it stays close to.
+    /// Its vertices, where the placement starts (as from a placement: they are near S, so it
+    /// needs not its three iterations at least) and which it stays close to.
     pub vertices: &'a [Vec3],
     /// One per edge, as seen from its first vertex.
     pub wall_normals: &'a [Vec3],
@@ -132,8 +133,9 @@ pub fn walls_across(
         })
     };
     let mut drops = 0;
-    // Where the last placement put the vertices that are kept.
-    let mut placed_before: Option<Vec<Vec3>> = None;
+    // Where the last placement put the vertices that are kept; at first, where a start's
+    // steps put them (near S and near its walls already, so its placement starts warm too).
+    let mut placed_before: Option<Vec<Vec3>> = start.map(|_| mesh.vertices.clone());
     let mut unconverged_before = false;
     let placement = PlacementOptions {
         edges_along_s: options.targets != AxisTargets::Normals,
@@ -286,4 +288,50 @@ fn inherited_points(
     }
     new_points.extend(sums.iter().map(|&(s, k)| s / k.max(1) as f64));
     new_points
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::hex_disk;
+
+    /// Started from a honeycomb's own vertices, walls and axes (as the evening starts from its
+    /// steps), the sheet needs no fit and the placement starts where the vertices stand: one
+    /// step besides its start, where one from the base mesh takes three at least, and it puts
+    /// the vertices back where they were.
+    #[test]
+    fn a_start_is_placed_from_where_its_vertices_stand() {
+        let base = hex_disk(4.0);
+        let plane = PolyMesh::new(
+            [(-20.0, -20.0), (20.0, -20.0), (20.0, 20.0), (-20.0, 20.0)]
+                .map(|(x, y)| Vec3::new(x, y, 0.0))
+                .to_vec(),
+            vec![vec![0, 1, 2, 3]],
+        );
+        let surface = Surface::from_mesh(&plane).unwrap();
+        let options = AcrossOptions::default();
+        let cold = walls_across(&base, None, &plane, &surface, &options, &mut |_, _| {}).unwrap();
+        assert!(cold.solve.iterations >= 1 + options.placement.iterations);
+        let h = &cold.honeycomb;
+        let normals: Vec<Vec3> = (0..h.edges.len()).map(|e| h.wall_normal(e)).collect();
+        let start = Start {
+            vertices: &h.base.vertices,
+            wall_normals: &normals,
+            axes: &h.axes,
+        };
+        let warm = walls_across(
+            &base,
+            Some(start),
+            &plane,
+            &surface,
+            &options,
+            &mut |_, _| {},
+        )
+        .unwrap();
+        assert_eq!((warm.field_iterations, warm.solve.iterations), (0, 2));
+        let edge = base.mean_edge_length();
+        for (a, b) in warm.honeycomb.base.vertices.iter().zip(&h.base.vertices) {
+            assert!((*a - *b).norm() < 1e-6 * edge, "{a:?} against {b:?}");
+        }
+    }
 }
