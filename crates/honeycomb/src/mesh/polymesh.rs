@@ -24,6 +24,16 @@ impl PolyMesh {
         )
     }
 
+    /// The square `[-half, half]^2` in the plane z = 0 as one quad, for tests.
+    #[cfg(test)]
+    pub(crate) fn square(half: f64) -> PolyMesh {
+        let corners = [(-half, -half), (half, -half), (half, half), (-half, half)];
+        PolyMesh::new(
+            corners.map(|(x, y)| Vec3::new(x, y, 0.0)).to_vec(),
+            vec![vec![0, 1, 2, 3]],
+        )
+    }
+
     /// Mean length of the distinct edges (0 for a mesh without edges).
     pub fn mean_edge_length(&self) -> f64 {
         let mut seen = std::collections::HashSet::new();

@@ -302,16 +302,11 @@ mod tests {
     #[test]
     fn a_start_is_placed_from_where_its_vertices_stand() {
         let base = hex_disk(4.0);
-        let plane = PolyMesh::new(
-            [(-20.0, -20.0), (20.0, -20.0), (20.0, 20.0), (-20.0, 20.0)]
-                .map(|(x, y)| Vec3::new(x, y, 0.0))
-                .to_vec(),
-            vec![vec![0, 1, 2, 3]],
-        );
+        let plane = PolyMesh::square(20.0);
         let surface = Surface::from_mesh(&plane).unwrap();
         let options = AcrossOptions::default();
         let cold = walls_across(&base, None, &plane, &surface, &options, &mut |_, _| {}).unwrap();
-        assert!(cold.solve.iterations >= 1 + options.placement.iterations);
+        assert!(cold.solve.iterations > options.placement.iterations);
         let h = &cold.honeycomb;
         let normals: Vec<Vec3> = (0..h.edges.len()).map(|e| h.wall_normal(e)).collect();
         let start = Start {

@@ -322,12 +322,7 @@ mod tests {
             .iter()
             .map(|p| Vec3::new(p.x * c, p.y, p.x.abs() * s))
             .collect();
-        let plane = PolyMesh::new(
-            [(-20.0, -20.0), (20.0, -20.0), (20.0, 20.0), (-20.0, 20.0)]
-                .map(|(x, y)| Vec3::new(x, y, 0.0))
-                .to_vec(),
-            vec![vec![0, 1, 2, 3]],
-        );
+        let plane = PolyMesh::square(20.0);
         let surface = Surface::from_mesh(&plane).unwrap();
         let options = PlacementOptions::default();
         let place_from = |from: Option<&[Vec3]>| {
