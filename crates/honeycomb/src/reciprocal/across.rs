@@ -85,8 +85,8 @@ pub enum Stage {
 /// mesh that is not exact (a few steps of the guided projection from one), model units.
 #[derive(Clone, Copy)]
 pub struct Start<'a> {
-    /// Its vertices, where the placement starts (as from a placement: they are near S, so it
-    /// needs not its three iterations at least) and which it stays close to.
+    /// Its vertices, where the placement starts (as from an earlier placement: they are near
+    /// S, so it does not need its three iterations at least) and which it stays close to.
     pub vertices: &'a [Vec3],
     /// One per edge, as seen from its first vertex.
     pub wall_normals: &'a [Vec3],

@@ -243,7 +243,7 @@ pub fn place(
 const SLID: f64 = 1e-7;
 
 /// How far the vertices are from S: the farthest of those whose closest point on S is inside
-/// its border, and of those beyond it.
+/// its border, and of those whose closest point is on the border (beyond it).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Off {
     pub within: f64,
