@@ -11,6 +11,32 @@ use faer::linalg::solvers::SolveCore;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
+/// The steps stop early once no point moves by more than this many mean edge lengths of S's
+/// triangles in one step: the flattening is then at rest to round-off (a developable S is
+/// after the first step), and the steps left would change nothing a lattice could see.
+const AT_REST: f64 = 1e-8;
+
+/// The mean edge length of the triangles in their own planes.
+fn mean_edge(locals: &[[Point2; 3]]) -> f64 {
+    let sum: f64 = locals
+        .iter()
+        .flat_map(|p| (0..3).map(move |k| (p[(k + 1) % 3], p[k])))
+        .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+        .sum();
+    sum / (3 * locals.len()).max(1) as f64
+}
+
+/// Moves `points` to `next` and says whether none moved by more than `rest`.
+fn moved_to(points: &mut [Point2], next: impl Iterator<Item = (usize, Point2)>, rest: f64) -> bool {
+    let mut at_rest = true;
+    for (v, p) in next {
+        let q = &mut points[v];
+        at_rest &= (p[0] - q[0]).abs() <= rest && (p[1] - q[1]).abs() <= rest;
+        *q = p;
+    }
+    at_rest
+}
+
 /// Each triangle in its own plane: corner coordinates in an orthonormal frame of the triangle.
 fn local_triangle(vertices: &[Vec3], t: &[usize; 3]) -> [Point2; 3] {
     let [a, b, c] = t.map(|v| vertices[v]);
@@ -54,17 +80,18 @@ fn cot_at(p: [Point2; 3], k: usize) -> f64 {
     }
 }
 
-/// Refines `points` in place by `iterations` local/global steps; vertex 0 stays where it is.
-/// Returns false (and leaves `points` alone) when the Laplacian cannot be factorized.
+/// Refines `points` in place by at most `iterations` local/global steps (fewer where they come
+/// to rest, [`AT_REST`]); vertex 0 stays where it is. Returns the steps taken, or `None` (and
+/// leaves `points` alone) when the Laplacian cannot be factorized.
 pub fn refine(
     vertices: &[Vec3],
     triangles: &[[usize; 3]],
     points: &mut [Point2],
     iterations: usize,
-) -> bool {
+) -> Option<usize> {
     let n = points.len();
     if n < 3 {
-        return false;
+        return None;
     }
     let (locals, weights) = locals_and_weights(vertices, triangles);
     // Laplacian over vertices 1..n (vertex 0 pinned), lower triangle.
@@ -81,16 +108,14 @@ pub fn refine(
             }
         }
     }
-    let Ok(matrix) = SparseColMat::<usize, f64>::try_new_from_triplets(n - 1, n - 1, &triplets)
-    else {
-        return false;
-    };
-    let Ok(llt) = matrix.sp_cholesky(Side::Lower) else {
-        return false;
-    };
+    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(n - 1, n - 1, &triplets).ok()?;
+    let llt = matrix.sp_cholesky(Side::Lower).ok()?;
     let pinned = points[0];
+    let rest = AT_REST * mean_edge(&locals);
     let mut rhs = Mat::<f64>::zeros(n - 1, 2);
-    for _ in 0..iterations {
+    let mut steps = 0;
+    while steps < iterations {
+        steps += 1;
         rhs.fill(0.0);
         for ((t, local), w) in triangles.iter().zip(&locals).zip(&weights) {
             let rotation = best_rotation(t.map(|v| points[v]), *local, *w);
@@ -114,11 +139,12 @@ pub fn refine(
             }
         }
         llt.solve_in_place_with_conj(faer::Conj::No, rhs.as_mut());
-        for v in 1..n {
-            points[v] = [rhs[(v - 1, 0)], rhs[(v - 1, 1)]];
+        let next = (1..n).map(|v| (v, [rhs[(v - 1, 0)], rhs[(v - 1, 1)]]));
+        if moved_to(points, next, rest) {
+            break;
         }
     }
-    true
+    Some(steps)
 }
 
 /// The rotation (cos, sin) that best turns the local triangle onto its image (weighted
@@ -175,7 +201,8 @@ fn apply(m: Block, v: Point2) -> Point2 {
 
 /// [`refine`] for a surface cut open along a seam whose two sides stay images of each other:
 /// each `(right, left)` pair of `pairs` keeps `left = R right + t`, R the turn `turn` (cos, sin)
-/// and t free. Returns false (leaving `points` alone) when the system cannot be factorized.
+/// and t free. Returns the steps taken, or `None` when the system cannot be factorized or the
+/// points end not finite.
 pub fn refine_seamed(
     vertices: &[Vec3],
     triangles: &[[usize; 3]],
@@ -183,16 +210,13 @@ pub fn refine_seamed(
     iterations: usize,
     pairs: &[(usize, usize)],
     turn: [f64; 2],
-) -> bool {
+) -> Option<usize> {
     let n = points.len();
     let mut partner = vec![usize::MAX; n];
     for &(right, left) in pairs {
         partner[left] = right;
     }
-    let Some(pin) = (0..n).find(|&v| partner[v] == usize::MAX && !pairs.iter().any(|p| p.0 == v))
-    else {
-        return false;
-    };
+    let pin = (0..n).find(|&v| partner[v] == usize::MAX && !pairs.iter().any(|p| p.0 == v))?;
     // Two unknowns per vertex that is neither pinned nor a left copy, then two for t.
     let mut unknown = vec![usize::MAX; n];
     let mut m = 0;
@@ -253,14 +277,13 @@ pub fn refine_seamed(
             edges.push((terms, [ci[0] - cj[0], ci[1] - cj[1]]));
         }
     }
-    let Ok(matrix) = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &triplets) else {
-        return false;
-    };
-    let Ok(llt) = matrix.sp_cholesky(Side::Lower) else {
-        return false;
-    };
+    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &triplets).ok()?;
+    let llt = matrix.sp_cholesky(Side::Lower).ok()?;
+    let rest = AT_REST * mean_edge(&locals);
     let mut rhs = Mat::<f64>::zeros(m, 1);
-    for _ in 0..iterations {
+    let mut steps = 0;
+    while steps < iterations {
+        steps += 1;
         rhs.fill(0.0);
         let mut edge = edges.iter();
         for ((t, local), w) in triangles.iter().zip(&locals).zip(&weights) {
@@ -277,15 +300,67 @@ pub fn refine_seamed(
         }
         llt.solve_in_place_with_conj(faer::Conj::No, rhs.as_mut());
         let t = [rhs[(t_unknown, 0)], rhs[(t_unknown + 1, 0)]];
-        for v in 0..n {
-            if unknown[v] != usize::MAX {
-                points[v] = [rhs[(unknown[v], 0)], rhs[(unknown[v] + 1, 0)]];
-            }
-        }
-        for &(right, left) in pairs {
+        let next = (0..n)
+            .filter(|&v| unknown[v] != usize::MAX)
+            .map(|v| (v, [rhs[(unknown[v], 0)], rhs[(unknown[v] + 1, 0)]]));
+        let right_at_rest = moved_to(points, next, rest);
+        let next = pairs.iter().map(|&(right, left)| {
             let turned = apply(rotation, points[right]);
-            points[left] = [turned[0] + t[0], turned[1] + t[1]];
+            (left, [turned[0] + t[0], turned[1] + t[1]])
+        });
+        let next: Vec<(usize, Point2)> = next.collect();
+        if moved_to(points, next.into_iter(), rest) && right_at_rest {
+            break;
         }
     }
-    points.iter().all(|p| p[0].is_finite() && p[1].is_finite())
+    points
+        .iter()
+        .all(|p| p[0].is_finite() && p[1].is_finite())
+        .then_some(steps)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An 8 x 8 grid of unit squares, each split into two triangles, lifted by `height`.
+    fn grid(height: impl Fn(f64, f64) -> f64) -> (Vec<Vec3>, Vec<[usize; 3]>) {
+        let n = 9;
+        let vertices = (0..n * n)
+            .map(|k| {
+                let (x, y) = ((k % n) as f64, (k / n) as f64);
+                Vec3::new(x, y, height(x, y))
+            })
+            .collect();
+        let triangles = (0..n - 1)
+            .flat_map(|j| (0..n - 1).map(move |i| j * n + i))
+            .flat_map(|a| [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]])
+            .collect();
+        (vertices, triangles)
+    }
+
+    /// A plane laid out stretched comes to rest at its own shape in two steps (the first
+    /// finds it, the second moves nothing) and stops there; a curved cap, which no
+    /// flattening keeps rigid, settles only slowly and takes many more.
+    #[test]
+    fn the_steps_stop_once_the_flattening_is_at_rest() {
+        let (flat, triangles) = grid(|_, _| 0.0);
+        let stretched = |v: &[Vec3]| -> Vec<Point2> {
+            v.iter()
+                .map(|p| [1.1 * (p.x - v[0].x), 1.1 * (p.y - v[0].y)])
+                .collect()
+        };
+        let mut points = stretched(&flat);
+        assert_eq!(refine(&flat, &triangles, &mut points, 30), Some(2));
+        for (p, v) in points.iter().zip(&flat) {
+            assert!(
+                (p[0] - v.x).abs() < 1e-9 && (p[1] - v.y).abs() < 1e-9,
+                "{p:?}"
+            );
+        }
+        let (cap, triangles) = grid(|x, y| 0.05 * ((x - 4.0).powi(2) + (y - 4.0).powi(2)));
+        let mut points = stretched(&cap);
+        let steps = refine(&cap, &triangles, &mut points, 30).unwrap();
+        assert!(steps > 10, "{steps}");
+    }
 }

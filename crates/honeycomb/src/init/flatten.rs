@@ -167,7 +167,7 @@ pub fn flatten_viewed(
         // A sliver is no reason to keep LSCM, whose cells grow and shrink with the conformal
         // factor over the whole of S.
         let mut refined = points.clone();
-        if super::arap::refine(vertices, triangles, &mut refined, ARAP_ITERATIONS)
+        if super::arap::refine(vertices, triangles, &mut refined, ARAP_ITERATIONS).is_some()
             && turns_over_slivers_only(vertices, triangles, &refined, &points, area3)
         {
             points = refined;
@@ -231,16 +231,14 @@ pub fn flatten_seamed(
     turn: [f64; 2],
 ) -> Option<Flattening> {
     let mut points = free.points.clone();
-    if !super::arap::refine_seamed(
+    super::arap::refine_seamed(
         vertices,
         triangles,
         &mut points,
         ARAP_ITERATIONS,
         pairs,
         turn,
-    ) {
-        return None;
-    }
+    )?;
     if !turns_over_slivers_only(vertices, triangles, &points, &free.points, free.area) {
         return None;
     }
