@@ -1154,7 +1154,7 @@ fn one_piece(
                 piece.union(w[0], w[1]);
             }
         }
-        let mut drop = all_but_largest(&mut piece, kept.len());
+        let mut drop = all_but_largest(&mut piece);
         // Round each corner, the cells joined through the edges that end there: where they
         // make two groups, all but the largest go.
         for (corner, sharing) in &round {
@@ -1169,8 +1169,7 @@ fn one_piece(
                     }
                 }
             }
-            let gone = all_but_largest(&mut group, sharing.len());
-            for (a, gone) in gone.into_iter().enumerate() {
+            for (a, gone) in all_but_largest(&mut group).into_iter().enumerate() {
                 drop[sharing[a]] |= gone;
             }
         }
@@ -1186,18 +1185,14 @@ fn one_piece(
     }
 }
 
-/// Per member `0..n` of `sets`: whether it lies outside the largest set (of equals, the one
-/// holding the first member).
-fn all_but_largest(sets: &mut UnionFind, n: usize) -> Vec<bool> {
-    let classes: Vec<usize> = (0..n).map(|k| sets.find(k)).collect();
-    let mut sizes = vec![0usize; n];
-    for &c in &classes {
-        sizes[c] += 1;
-    }
+/// Per member of `sets`: whether it lies outside the largest set (of equals, the one holding
+/// the first member).
+fn all_but_largest(sets: &mut UnionFind) -> Vec<bool> {
+    let n = sets.members();
     let largest = (0..n)
-        .max_by_key(|&k| (sizes[classes[k]], Reverse(k)))
-        .map(|k| classes[k]);
-    classes.iter().map(|&c| Some(c) != largest).collect()
+        .max_by_key(|&k| (sets.size_of(k), Reverse(k)))
+        .map(|k| sets.find(k));
+    (0..n).map(|k| Some(sets.find(k)) != largest).collect()
 }
 
 #[allow(clippy::too_many_arguments)]

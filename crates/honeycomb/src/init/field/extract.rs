@@ -212,6 +212,17 @@ impl UnionFind {
         x
     }
 
+    /// How many members there are in all.
+    pub fn members(&self) -> usize {
+        self.parent.len()
+    }
+
+    /// How many members the set of `x` has.
+    pub fn size_of(&mut self, x: usize) -> usize {
+        let root = self.find(x);
+        self.size[root]
+    }
+
     pub fn union(&mut self, a: usize, b: usize) {
         let (mut a, mut b) = (self.find(a), self.find(b));
         if a == b {
