@@ -26,6 +26,11 @@ impl SharedRotations {
         self.0.read().unwrap_or_else(|e| e.into_inner())[t]
     }
 
+    /// Sets the base rotation of triangle `t`.
+    pub fn set(&self, t: usize, base: Matrix3) {
+        self.0.write().unwrap_or_else(|e| e.into_inner())[t] = base;
+    }
+
     /// Folds each rotation vector `w[t]` into its base rotation.
     pub fn rebase(&self, w: &[Vec3]) {
         let mut bases = self.0.write().unwrap_or_else(|e| e.into_inner());

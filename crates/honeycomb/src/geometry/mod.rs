@@ -10,7 +10,7 @@ mod vector_file;
 
 pub use direction::parse_direction;
 pub(crate) use segment::segment_distance;
-pub(crate) use sym3::{smallest_eigenvector, sum_of_outer_products};
+pub(crate) use sym3::{smallest_eigenvector, solve_symmetric, sum_of_outer_products};
 pub use vec3::Vec3;
 pub use vector_file::read_axes;
 pub(crate) use vector_file::read_vectors;

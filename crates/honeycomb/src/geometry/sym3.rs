@@ -46,6 +46,20 @@ pub fn smallest_eigenvector(m: [[f64; 3]; 3]) -> Vec3 {
     Vec3::new(v[0][k], v[1][k], v[2][k]).normalized()
 }
 
+/// The solution of `m x = b` for a symmetric `m`, or `None` where `m` is singular to
+/// rounding. The rows of the inverse of a symmetric matrix are the cross products of its rows.
+pub fn solve_symmetric(m: [[f64; 3]; 3], b: Vec3) -> Option<Vec3> {
+    let [r0, r1, r2] = m.map(|r| Vec3::new(r[0], r[1], r[2]));
+    let (c0, c1, c2) = (r1.cross(r2), r2.cross(r0), r0.cross(r1));
+    let det = r0.dot(c0);
+    let scale = r0.norm() * r1.norm() * r2.norm();
+    // A NaN determinant is singular too.
+    if det.is_nan() || det.abs() <= 1e-12 * scale {
+        return None;
+    }
+    Some(Vec3::new(c0.dot(b), c1.dot(b), c2.dot(b)) / det)
+}
+
 /// `sum_k u_k u_k^T`.
 pub fn sum_of_outer_products(vectors: impl IntoIterator<Item = Vec3>) -> [[f64; 3]; 3] {
     let mut m = [[0.0; 3]; 3];
@@ -75,6 +89,22 @@ mod tests {
         });
         let e = smallest_eigenvector(sum_of_outer_products(dirs));
         assert!((e.dot(axis).abs() - 1.0).abs() < 1e-14, "{e:?} vs {axis:?}");
+    }
+
+    /// `solve_symmetric` inverts a symmetric matrix and tells a singular one.
+    #[test]
+    fn a_symmetric_system_is_solved() {
+        let m = [[4.0, 1.0, -2.0], [1.0, 3.0, 0.5], [-2.0, 0.5, 5.0]];
+        let x = Vec3::new(0.7, -1.3, 2.1);
+        let b = Vec3::new(
+            m[0][0] * x.x + m[0][1] * x.y + m[0][2] * x.z,
+            m[1][0] * x.x + m[1][1] * x.y + m[1][2] * x.z,
+            m[2][0] * x.x + m[2][1] * x.y + m[2][2] * x.z,
+        );
+        let got = solve_symmetric(m, b).unwrap();
+        assert!((got - x).norm() < 1e-13, "{got:?}");
+        let flat = sum_of_outer_products([Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]);
+        assert!(solve_symmetric(flat, b).is_none());
     }
 
     #[test]
