@@ -633,7 +633,7 @@ fn pipeline_checks_its_options_before_writing() {
     }
 }
 
-/// `pipeline` on a steep bowl, `z = 1.5 r^2` over the unit square, where walls across S leave
+/// `pipeline` on a steep bowl, `z = 1.7 r^2` over the unit square, where walls across S leave
 /// uneven cells (`--no-even-cells`): by default (and with `--even-cells`) report.json's edge
 /// cv, measured on the written meshes, meets what a base mesh is asked, and a note says what
 /// was traded.

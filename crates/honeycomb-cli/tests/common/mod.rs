@@ -301,7 +301,7 @@ pub fn pipeline(surface: &Path, dir: &Path, extra: &[&str]) -> Output {
     run(args)
 }
 
-/// A steep bowl, `z = 1.5 r^2` over the unit square (slopes up to 65 degrees), written as an
+/// A steep bowl, `z = 1.7 r^2` over the unit square (slopes up to 67 degrees), written as an
 /// OBJ of 60 x 60 squares each cut in two.
 pub fn bowl_file(tmp: &TempDir) -> PathBuf {
     let n = 60;
@@ -309,7 +309,7 @@ pub fn bowl_file(tmp: &TempDir) -> PathBuf {
     for j in 0..=n {
         for i in 0..=n {
             let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
-            let z = 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2));
+            let z = 1.7 * ((x - 0.5).powi(2) + (y - 0.5).powi(2));
             text += &format!("v {x} {y} {z}\n");
         }
     }

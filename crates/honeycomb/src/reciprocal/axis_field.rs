@@ -8,6 +8,7 @@
 //! without stretching it. The rotations are eliminated before each factorization (no row
 //! joins two of them), so the factor is over the points only.
 
+use super::ghosts::Ghosts;
 use super::Sheet;
 use crate::constraints::{OrthogonalDifference, RigidTriangles, SharedRotations};
 use crate::error::Result;
@@ -59,6 +60,12 @@ impl Default for AxisFieldOptions {
     }
 }
 
+/// Once the guides have faded to this share of their start they no longer steer the fit: the
+/// ghosts are then set by their own walls between the steps ([`Ghosts`]), while some wall is
+/// still this far from unit length (in `|p_a - p_b|^2 - 1`).
+const GHOSTS_SETTLE_BELOW: f64 = 1.0 / 256.0;
+const GHOSTS_SETTLE_ABOVE_GAP: f64 = 1e-2;
+
 /// The fitted sheet.
 pub struct AxisField {
     pub points: Vec<Vec3>,
@@ -81,7 +88,7 @@ fn reference_corner(k: usize) -> Vec3 {
 
 /// The rotation that turns the reference triangle, whose first side is `first_side`, towards
 /// triangle `p`: its first side along `p`'s, its normal along `p`'s.
-fn fitted_rotation(p: [Vec3; 3], first_side: Vec3) -> Matrix3 {
+pub(super) fn fitted_rotation(p: [Vec3; 3], first_side: Vec3) -> Matrix3 {
     let n = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
     let t = (p[1] - p[0]).normalized();
     let r = frame(first_side.normalized(), Vec3::new(0.0, 0.0, 1.0));
@@ -195,6 +202,7 @@ pub fn fit_axis_field(
         cancel: options.cancel.clone(),
         ..SolverOptions::default()
     };
+    let ghosts = Ghosts::new(sheet);
     let mut state = SolveState::new(options.eps);
     let mut met = false;
     while !met && state.iterations() < options.iterations {
@@ -208,6 +216,17 @@ pub fn fit_axis_field(
             .collect();
         bases.rebase(&turns);
         y[3 * np..].fill(0.0);
+        // The ghosts crawl where the steps' linearization fails, far from unit walls; near
+        // them the steps converge fast on their own, and settled ghosts only pull against
+        // what is left of the guides.
+        let faded = options.fade.powi(state.iterations() as i32) <= GHOSTS_SETTLE_BELOW;
+        if faded && max_gap(&y, &pairs) >= GHOSTS_SETTLE_ABOVE_GAP {
+            let mut p: Vec<Vec3> = y[..3 * np].chunks(3).map(Vec3::from_slice).collect();
+            ghosts.settle(&mut p, &sheet.triangles, sides[0], &bases);
+            for (k, q) in p.iter().enumerate().skip(sheet.cells) {
+                y[3 * k..3 * k + 3].copy_from_slice(&q.to_array());
+            }
+        }
         met = max_gap(&y, &pairs) < options.tolerance;
     }
     let mut solve = solver.report(&y, state, &solver_options);

@@ -17,6 +17,7 @@
 
 mod across;
 mod axis_field;
+mod ghosts;
 mod placement;
 mod sheet;
 mod targets;

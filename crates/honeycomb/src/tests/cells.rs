@@ -14,10 +14,10 @@ fn height_field(n: usize, height: impl Fn(f64, f64) -> f64) -> Surface {
     Surface::new(PolyMesh::new(vertices, faces)).unwrap()
 }
 
-/// A steep bowl, `z = 1.5 r^2` over the unit square (slopes up to 65 degrees): a flattened
+/// A steep bowl, `z = 1.7 r^2` over the unit square (slopes up to 67 degrees): a flattened
 /// lattice's cells on it come out uneven under walls across S.
 fn bowl() -> Surface {
-    height_field(60, |x, y| 1.5 * ((x - 0.5).powi(2) + (y - 0.5).powi(2)))
+    height_field(60, |x, y| 1.7 * ((x - 0.5).powi(2) + (y - 0.5).powi(2)))
 }
 
 /// The pipeline's honeycomb of about `cells` cells on `surface`.
