@@ -86,6 +86,11 @@ fn reference_corner(k: usize) -> Vec3 {
     Vec3::new(a.cos(), a.sin(), 0.0) / 3f64.sqrt()
 }
 
+/// The sides of the reference triangle, from its corner k to corner k + 1.
+pub(super) fn reference_sides() -> [Vec3; 3] {
+    std::array::from_fn(|k| reference_corner(k + 1) - reference_corner(k))
+}
+
 /// The rotation that turns the reference triangle, whose first side is `first_side`, towards
 /// triangle `p`: its first side along `p`'s, its normal along `p`'s.
 pub(super) fn fitted_rotation(p: [Vec3; 3], first_side: Vec3) -> Matrix3 {
@@ -119,7 +124,7 @@ pub fn fit_axis_field(
             solve: SolveReport::untouched(3 * (np + nt)),
         });
     }
-    let sides: [Vec3; 3] = std::array::from_fn(|k| reference_corner(k + 1) - reference_corner(k));
+    let sides = reference_sides();
     let bases = SharedRotations::new(
         sheet
             .triangles
@@ -220,14 +225,16 @@ pub fn fit_axis_field(
         // them the steps converge fast on their own, and settled ghosts only pull against
         // what is left of the guides.
         let faded = options.fade.powi(state.iterations() as i32) <= GHOSTS_SETTLE_BELOW;
-        if faded && max_gap(&y, &pairs) >= GHOSTS_SETTLE_ABOVE_GAP {
+        let mut gap = max_gap(&y, &pairs);
+        if faded && gap >= GHOSTS_SETTLE_ABOVE_GAP {
             let mut p: Vec<Vec3> = y[..3 * np].chunks(3).map(Vec3::from_slice).collect();
             ghosts.settle(&mut p, &sheet.triangles, sides[0], &bases);
             for (k, q) in p.iter().enumerate().skip(sheet.cells) {
                 y[3 * k..3 * k + 3].copy_from_slice(&q.to_array());
             }
+            gap = max_gap(&y, &pairs);
         }
-        met = max_gap(&y, &pairs) < options.tolerance;
+        met = gap < options.tolerance;
     }
     let mut solve = solver.report(&y, state, &solver_options);
     solve.converged = met;

@@ -148,15 +148,7 @@ mod tests {
     use crate::generate::hex_disk;
     use crate::geometry::rotation::{apply, exp, multiply};
     use crate::mesh::validate_base_mesh;
-
-    /// The sides of the reference triangle (unit sides, counterclockwise in z = 0).
-    fn reference_sides() -> [Vec3; 3] {
-        let corner = |k: usize| {
-            let a = std::f64::consts::FRAC_PI_2 + 2.0 * std::f64::consts::FRAC_PI_3 * k as f64;
-            Vec3::new(a.cos(), a.sin(), 0.0) / 3f64.sqrt()
-        };
-        std::array::from_fn(|k| corner(k + 1) - corner(k))
-    }
+    use crate::reciprocal::axis_field::reference_sides;
 
     fn flat_sheet() -> (Sheet, Vec<Vec3>) {
         let mesh = hex_disk(4.0);
