@@ -65,6 +65,9 @@ impl Default for AxisFieldOptions {
 /// still this far from unit length (in `|p_a - p_b|^2 - 1`).
 const GHOSTS_SETTLE_BELOW: f64 = 1.0 / 256.0;
 const GHOSTS_SETTLE_ABOVE_GAP: f64 = 1e-2;
+/// Once every wall is this close to unit length the guides are let go: the sheet's fold is
+/// set, and the last steps only make its walls unit.
+const GUIDES_RELEASED_BELOW: f64 = 1e-3;
 
 /// The fitted sheet.
 pub struct AxisField {
@@ -235,6 +238,9 @@ pub fn fit_axis_field(
             gap = max_gap(&y, &pairs);
         }
         met = gap < options.tolerance;
+        if gap < GUIDES_RELEASED_BELOW {
+            state.release_guides();
+        }
     }
     let mut solve = solver.report(&y, state, &solver_options);
     solve.converged = met;

@@ -121,6 +121,8 @@ pub struct GuidedProjection<'a> {
     substitution: Option<(Substitution, Vec<f64>)>,
     seconds_symbolic: f64,
     iteration: usize,
+    /// Whether the guides weigh nothing any more ([`SolveState::release_guides`]).
+    guides_released: bool,
 }
 
 impl<'a> GuidedProjection<'a> {
@@ -213,6 +215,7 @@ impl<'a> GuidedProjection<'a> {
             }),
             seconds_symbolic: start.elapsed().as_secs_f64(),
             iteration: 0,
+            guides_released: false,
         })
     }
 
@@ -225,6 +228,7 @@ impl<'a> GuidedProjection<'a> {
     fn weight(&self, f: usize, fade: f64) -> f64 {
         let c = &self.families[f];
         match c.role() {
+            Role::Guide if self.guides_released => 0.0,
             Role::Guide => c.weight() * c.guide_fade().powi(self.iteration as i32),
             Role::Condition => c.weight(),
             Role::Fairness => c.weight() * fade.sqrt(),
@@ -308,6 +312,7 @@ impl<'a> GuidedProjection<'a> {
         state.trial.resize(n, 0.0);
         let (eps, fade) = (state.eps, state.relative_fade());
         self.iteration = state.history.len();
+        self.guides_released = state.guides_released;
         let t = Instant::now();
         self.refresh(x);
         state.t_other += t.elapsed();
@@ -505,6 +510,7 @@ pub struct SolveState {
     converged: bool,
     /// Whether the last step raised the energy.
     last_rose: bool,
+    guides_released: bool,
     history: Vec<IterationInfo>,
     factorizations: usize,
     t_assembly: Duration,
@@ -523,6 +529,7 @@ impl SolveState {
             fade: eps,
             converged: false,
             last_rose: false,
+            guides_released: false,
             history: Vec::new(),
             factorizations: 0,
             t_assembly: Duration::ZERO,
@@ -549,6 +556,13 @@ impl SolveState {
             self.eps = (self.eps * EPS_GROWTH).min(self.eps0);
             self.fade = (self.fade * EPS_GROWTH).min(self.eps0);
         }
+    }
+
+    /// The guides weigh nothing from the next step on. Once the conditions are nearly met,
+    /// what is left of a guide only moves the unknowns along the conditions' null space, and
+    /// every such step breaks the conditions again to second order.
+    pub fn release_guides(&mut self) {
+        self.guides_released = true;
     }
 
     /// Steps taken so far.
@@ -634,5 +648,41 @@ mod tests {
         solver.solve(&mut x, &opts, &mut |_| {}).unwrap();
         let off = x.iter().fold(0.0f64, |m, v| m.max((v - 1.0).abs()));
         assert!(off < 1e-10, "the condition is {off} off");
+    }
+
+    /// A released guide no longer pulls: the next step meets the condition it pulled against
+    /// (to the regularization), where the guide kept at its faded weight holds it 0.45 short.
+    #[test]
+    fn a_released_guide_no_longer_pulls() {
+        let after_two_steps = |release: bool| {
+            let families: Vec<Box<dyn Constraint>> = vec![
+                Box::new(Pull {
+                    target: 1.0,
+                    weight: 1.0,
+                    role: Role::Condition,
+                }),
+                Box::new(Pull {
+                    target: 0.0,
+                    weight: 3.0,
+                    role: Role::Guide,
+                }),
+            ];
+            let mut solver = GuidedProjection::new(3, families).unwrap();
+            let mut x = vec![0.0; 3];
+            let opts = SolverOptions {
+                tolerance: 0.0,
+                ..SolverOptions::default()
+            };
+            let mut state = SolveState::new(opts.eps);
+            solver.iterate(&mut x, &mut state, &opts).unwrap();
+            if release {
+                state.release_guides();
+            }
+            solver.iterate(&mut x, &mut state, &opts).unwrap();
+            x.iter().fold(0.0f64, |m, v| m.max((v - 1.0).abs()))
+        };
+        let (released, kept) = (after_two_steps(true), after_two_steps(false));
+        assert!(released < 1e-3, "released, the condition is {released} off");
+        assert!(kept > 0.4, "kept, the condition is {kept} off");
     }
 }
