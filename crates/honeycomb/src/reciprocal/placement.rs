@@ -25,9 +25,11 @@ use crate::surface::{Surface, PARALLEL_QUERIES_FROM};
 const ON_SURFACE: f64 = 0.01;
 /// ...or one beyond the border is farther than this from it. The closeness holds such a vertex
 /// only while it is beyond, so it swings in and out from one iteration to the next and would
-/// never come within `ON_SURFACE`; the placement stops where the swing leaves it near the
-/// border, and the cells that stand out beyond it are trimmed afterwards.
-const NEAR_BORDER: f64 = 0.3;
+/// never come within `ON_SURFACE`. A cell that keeps a vertex off S by more than `ON_S` is
+/// trimmed afterwards (`trim_overhang`), whether the swing left it a little or far beyond the
+/// border; the placement goes on only for a vertex a whole edge length out or more, which the
+/// next steps may still bring back.
+const NEAR_BORDER: f64 = 1.0;
 
 #[derive(Clone, Debug)]
 pub struct PlacementOptions {
