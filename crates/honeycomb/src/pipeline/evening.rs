@@ -39,6 +39,10 @@ const AXES_ALONG_NORMALS: f64 = 0.2;
 /// The placement's pull to where the steps put the vertices (inside and on the boundary): those
 /// positions are the even cells.
 const HELD_VERTICES: f64 = 1.0;
+/// The sheet's guides (towards the steps' axes and walls) fade this much faster per iteration
+/// than in a fit from the base mesh: the sheet starts from the steps' walls, whose fold the
+/// guides then only need to hold for the first steps.
+const GUIDES_FADE: f64 = 0.5;
 /// Boundary cells the placement breaks may be dropped in this many rounds, at most this share
 /// of the cells in a round of evening.
 const DROP_ROUNDS: usize = 2;
@@ -186,6 +190,7 @@ fn round(
         max_dropped_share: DROPPED_SHARE,
         ..AcrossOptions::default()
     };
+    across_options.field.fade *= GUIDES_FADE;
     across_options.field.cancel = options.solver.cancel.clone();
     across_options.placement.cancel = options.solver.cancel.clone();
     let stepped_h = &stepped.honeycomb;
