@@ -8,7 +8,7 @@
 //! (closeness), to cells of one size and shape (each edge the regular cell's edge across its
 //! wall) and, weakly, to where they started; walls stay planar and nodes at 120 degrees exactly.
 
-use super::Sheet;
+use super::{Sheet, ON_S};
 use crate::constraints::{Closeness, EdgeVectors, Layout, SharedTargets, VertexTargets};
 use crate::error::Result;
 use crate::geometry::Vec3;
@@ -21,7 +21,9 @@ use crate::solve::{
 use crate::surface::{Surface, PARALLEL_QUERIES_FROM};
 
 /// Placement goes on while a vertex within S's border is farther than this from S (mean edge
-/// lengths)...
+/// lengths), or one whose axis grazes S (it cannot slide onto S) is farther than `ON_S`, off
+/// S as the trim counts it: the closeness brings it in slowly, along a line S curves away
+/// from...
 const ON_SURFACE: f64 = 0.01;
 /// ...or one beyond the border is farther than this from it. The closeness holds such a vertex
 /// only while it is beyond, so it swings in and out from one iteration to the next and would
@@ -243,64 +245,92 @@ pub fn place(
 /// A slide this much shorter than its limit ends the Newton steps: the next would be of the
 /// order of its square.
 const SLID: f64 = 1e-7;
+/// An axis this close to S's tangent plane (the cosine of its angle with S's normal) does not
+/// slide: each step along it lands on the tangent plane, from which S curves away.
+const GRAZING: f64 = 0.2;
 
 /// How far the vertices are from S: the farthest of those whose closest point on S is inside
 /// its border, and of those whose closest point is on the border (beyond it).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Off {
     pub within: f64,
+    /// Of those within the border whose axes graze S (they do not slide).
+    pub grazing: f64,
     pub beyond: f64,
 }
 
 impl Off {
-    /// Whether a placement may stop: every vertex within S's border on S, every one beyond
-    /// it near the border (both in units of `mean_edge`).
+    /// Whether a placement may stop: every vertex within S's border on S (one whose axis
+    /// grazes S near enough to keep its cell), every one beyond it near the border (all in
+    /// units of `mean_edge`).
     fn settled(&self, mean_edge: f64) -> bool {
-        self.within <= ON_SURFACE * mean_edge && self.beyond <= NEAR_BORDER * mean_edge
+        self.within <= ON_SURFACE * mean_edge
+            && self.grazing <= ON_S * mean_edge
+            && self.beyond <= NEAR_BORDER * mean_edge
     }
 }
 
 /// Moves each vertex along its axis onto `surface` (a few Newton steps on its signed distance
 /// to the tangent plane at its closest point), never further than `limit` in one step; a
-/// vertex beyond S's border stays. Returns how far the vertices are from S afterwards.
+/// vertex beyond S's border stays, and so does one whose axis grazes S. Returns how far the
+/// vertices are from S afterwards.
 pub fn slide_onto(surface: &Surface, vertices: &mut [Vec3], axes: &[Vec3], limit: f64) -> Off {
-    let mut moved: Vec<(Vec3, f64, bool)> = vertices.iter().map(|&p| (p, 0.0, false)).collect();
+    let mut moved: Vec<(Vec3, f64, Foot)> =
+        vertices.iter().map(|&p| (p, 0.0, Foot::Within)).collect();
     in_halves(&mut moved, PARALLEL_QUERIES_FROM, |first, part| {
-        for (k, (p, distance, beyond)) in part.iter_mut().enumerate() {
-            (*distance, *beyond) = slid(surface, p, axes[first + k], limit);
+        for (k, (p, distance, foot)) in part.iter_mut().enumerate() {
+            (*distance, *foot) = slid(surface, p, axes[first + k], limit);
         }
     });
     let mut off = Off::default();
-    for (v, &(p, distance, beyond)) in vertices.iter_mut().zip(&moved) {
+    for (v, &(p, distance, foot)) in vertices.iter_mut().zip(&moved) {
         *v = p;
-        let farthest = if beyond {
-            &mut off.beyond
-        } else {
-            &mut off.within
+        let farthest = match foot {
+            Foot::Within => &mut off.within,
+            Foot::Grazing => &mut off.grazing,
+            Foot::Beyond => &mut off.beyond,
         };
         *farthest = farthest.max(distance);
     }
     off
 }
 
+/// Where a slid vertex's closest point on S is, and whether its axis could take it there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Foot {
+    Within,
+    /// Within S's border, with the axis too close to S's tangent plane to slide along.
+    Grazing,
+    /// On S's border (the vertex beyond it).
+    Beyond,
+}
+
 /// `p` slid along `axis` onto `surface` (see [`slide_onto`]); its distance from S then (at most
 /// that before a last step of less than [`SLID`] limits), and whether its closest point is on
 /// S's border.
-fn slid(surface: &Surface, p: &mut Vec3, axis: Vec3, limit: f64) -> (f64, bool) {
+fn slid(surface: &Surface, p: &mut Vec3, axis: Vec3, limit: f64) -> (f64, Foot) {
     let mut c = surface.closest_point(*p);
     for _ in 0..6 {
+        if c.on_boundary {
+            return (c.distance, Foot::Beyond);
+        }
         let along = axis.dot(c.normal);
-        if along.abs() < 0.2 || c.on_boundary {
-            break;
+        if along.abs() < GRAZING {
+            return (c.distance, Foot::Grazing);
         }
         let step = (-(*p - c.point).dot(c.normal) / along).clamp(-limit, limit);
         *p += axis * step;
         if step.abs() < SLID * limit {
-            return (c.distance, c.on_boundary);
+            return (c.distance, Foot::Within);
         }
         c = surface.closest_point(*p);
     }
-    (c.distance, c.on_boundary)
+    let foot = if c.on_boundary {
+        Foot::Beyond
+    } else {
+        Foot::Within
+    };
+    (c.distance, foot)
 }
 
 #[cfg(test)]
@@ -352,38 +382,57 @@ mod tests {
         }
     }
 
-    /// A placement stops with every vertex within S's border on it and those beyond it near
-    /// the border (where a swing leaves them), not while one within is off S or one beyond
-    /// is far out.
+    /// A placement stops with every vertex within S's border on it, those whose axes graze S
+    /// near enough to keep their cells, and those beyond it near the border (where a swing
+    /// leaves them); not while one within is off S, one grazing would be trimmed or one
+    /// beyond is far out.
     #[test]
     fn a_placement_settles_with_the_vertices_beyond_the_border_near_it() {
         let edge = 2.0;
-        let off = |within: f64, beyond: f64| Off { within, beyond }.settled(edge);
-        assert!(off(0.0, 0.0));
-        assert!(off(0.5 * ON_SURFACE * edge, 0.9 * NEAR_BORDER * edge));
-        assert!(!off(2.0 * ON_SURFACE * edge, 0.0));
-        assert!(!off(0.0, 1.1 * NEAR_BORDER * edge));
+        let off = |within: f64, grazing: f64, beyond: f64| {
+            Off {
+                within,
+                grazing,
+                beyond,
+            }
+            .settled(edge)
+        };
+        assert!(off(0.0, 0.0, 0.0));
+        assert!(off(
+            0.5 * ON_SURFACE * edge,
+            0.9 * ON_S * edge,
+            0.9 * NEAR_BORDER * edge
+        ));
+        assert!(!off(2.0 * ON_SURFACE * edge, 0.0, 0.0));
+        assert!(!off(0.0, 1.1 * ON_S * edge, 0.0));
+        assert!(!off(0.0, 0.0, 1.1 * NEAR_BORDER * edge));
     }
 
     /// Vertices above S slide down their axes onto it; one beyond S's border, whose foot is on
-    /// the border, stays, and its distance is told apart. On two threads as on one.
+    /// the border, stays, and so does one whose axis nearly lies in S: their distances are
+    /// told apart. On two threads as on one.
     #[test]
     fn vertices_slide_onto_s_along_their_axes() {
         let surface = Surface::from_mesh(&PolyMesh::unit_square()).unwrap();
-        for count in [3, PARALLEL_QUERIES_FROM + 1] {
+        for count in [4, PARALLEL_QUERIES_FROM + 2] {
             let mut vertices: Vec<Vec3> = (0..count)
                 .map(|k| Vec3::new(0.1 + 0.8 * (k % 7) as f64 / 7.0, 0.5, 0.3))
                 .collect();
-            vertices[count - 1] = Vec3::new(1.2, 0.5, 0.0);
+            let (beyond, grazing) = (count - 1, count - 2);
+            vertices[beyond] = Vec3::new(1.2, 0.5, 0.0);
+            vertices[grazing] = Vec3::new(0.5, 0.5, 0.04);
             let tilted = Vec3::new(0.3, 0.0, 1.0).normalized();
             let mut axes = vec![tilted; count];
-            axes[count - 1] = Vec3::new(0.0, 0.0, 1.0);
+            axes[beyond] = Vec3::new(0.0, 0.0, 1.0);
+            axes[grazing] = Vec3::new(1.0, 0.0, 0.15).normalized();
             let start = vertices.clone();
             let off = slide_onto(&surface, &mut vertices, &axes, 1.0);
             assert!(off.within < 1e-12, "{count}: {off:?}");
+            assert!((off.grazing - 0.04).abs() < 1e-12, "{count}: {off:?}");
             assert!((off.beyond - 0.2).abs() < 1e-12, "{count}: {off:?}");
-            assert_eq!(vertices[count - 1], start[count - 1]);
-            for (p, s) in vertices.iter().zip(&start).take(count - 1) {
+            assert_eq!(vertices[beyond], start[beyond]);
+            assert_eq!(vertices[grazing], start[grazing]);
+            for (p, s) in vertices.iter().zip(&start).take(grazing) {
                 assert!(p.z.abs() < 1e-12, "{p:?}");
                 // Along the axis: down 0.3, across 0.3 * 0.3.
                 assert!((p.x - (s.x - 0.09)).abs() < 1e-12, "{p:?} from {s:?}");
