@@ -306,8 +306,7 @@ enum Foot {
 }
 
 /// `p` slid along `axis` onto `surface` (see [`slide_onto`]); its distance from S then (at most
-/// that before a last step of less than [`SLID`] limits), and whether its closest point is on
-/// S's border.
+/// that before a last step of less than [`SLID`] limits), and where its foot on S is.
 fn slid(surface: &Surface, p: &mut Vec3, axis: Vec3, limit: f64) -> (f64, Foot) {
     let mut c = surface.closest_point(*p);
     for _ in 0..6 {
