@@ -626,6 +626,20 @@ mod tests {
     /// hold the unknowns 9e-5 short.
     #[test]
     fn fairness_stops_pulling_against_the_conditions() {
+        let mut solver = pulled_against(Role::Fairness);
+        let mut x = vec![0.0; 3];
+        let opts = SolverOptions {
+            max_iterations: 20,
+            tolerance: 0.0,
+            ..SolverOptions::default()
+        };
+        solver.solve(&mut x, &opts, &mut |_| {}).unwrap();
+        let off = off_the_condition(&x);
+        assert!(off < 1e-10, "the condition is {off} off");
+    }
+
+    /// The condition `x = 1` on three unknowns, and a family of `role` pulling them to 0.
+    fn pulled_against(role: Role) -> GuidedProjection<'static> {
         let families: Vec<Box<dyn Constraint>> = vec![
             Box::new(Pull {
                 target: 1.0,
@@ -635,19 +649,15 @@ mod tests {
             Box::new(Pull {
                 target: 0.0,
                 weight: 3.0,
-                role: Role::Fairness,
+                role,
             }),
         ];
-        let mut solver = GuidedProjection::new(3, families).unwrap();
-        let mut x = vec![0.0; 3];
-        let opts = SolverOptions {
-            max_iterations: 20,
-            tolerance: 0.0,
-            ..SolverOptions::default()
-        };
-        solver.solve(&mut x, &opts, &mut |_| {}).unwrap();
-        let off = x.iter().fold(0.0f64, |m, v| m.max((v - 1.0).abs()));
-        assert!(off < 1e-10, "the condition is {off} off");
+        GuidedProjection::new(3, families).unwrap()
+    }
+
+    /// How far `x` is from meeting the condition of [`pulled_against`].
+    fn off_the_condition(x: &[f64]) -> f64 {
+        x.iter().fold(0.0f64, |m, v| m.max((v - 1.0).abs()))
     }
 
     /// A released guide no longer pulls: the next step meets the condition it pulled against
@@ -655,19 +665,7 @@ mod tests {
     #[test]
     fn a_released_guide_no_longer_pulls() {
         let after_two_steps = |release: bool| {
-            let families: Vec<Box<dyn Constraint>> = vec![
-                Box::new(Pull {
-                    target: 1.0,
-                    weight: 1.0,
-                    role: Role::Condition,
-                }),
-                Box::new(Pull {
-                    target: 0.0,
-                    weight: 3.0,
-                    role: Role::Guide,
-                }),
-            ];
-            let mut solver = GuidedProjection::new(3, families).unwrap();
+            let mut solver = pulled_against(Role::Guide);
             let mut x = vec![0.0; 3];
             let opts = SolverOptions {
                 tolerance: 0.0,
@@ -679,7 +677,7 @@ mod tests {
                 state.release_guides();
             }
             solver.iterate(&mut x, &mut state, &opts).unwrap();
-            x.iter().fold(0.0f64, |m, v| m.max((v - 1.0).abs()))
+            off_the_condition(&x)
         };
         let (released, kept) = (after_two_steps(true), after_two_steps(false));
         assert!(released < 1e-3, "released, the condition is {released} off");
