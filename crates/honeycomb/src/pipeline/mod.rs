@@ -140,6 +140,8 @@ pub fn pipeline(
     };
     let mut attempts = attempts(&options.init, walls);
     let mut spent = 0;
+    // Whether walls across S turned a node over on every mesh tried so far.
+    let mut turned_every = true;
     for k in 0..attempts.len() {
         let (init_options, what, facing) = attempts[k].clone();
         let init_options = &init_options;
@@ -155,6 +157,7 @@ pub fn pipeline(
                 Ok(made) => made,
                 // S too curved for the cells asked is so whichever way the grid is laid.
                 Err(e) if !last && !matches!(e, Error::Unsuited(_)) => {
+                    turned_every = false;
                     notes.push(format!(
                         "{what}: {}; trying {}",
                         message(&e),
@@ -184,17 +187,24 @@ pub fn pipeline(
             Walls::Uniform if !planar => Walls::Free,
             w => w,
         };
+        let otherwise = match (last, turned_every) {
+            (false, _) => Otherwise::Why,
+            (true, false) => Otherwise::Guided,
+            (true, true) => Otherwise::GuidedUnlessTurned(k + 1),
+        };
         let solved = solve_made(
             &made,
             surface,
             model_surface,
             options,
             walls,
-            last,
+            otherwise,
             progress,
         )?;
         let solved = match solved {
-            Err((why, _)) if last => return Err(Error::Solver(format!("{what}: {why}"))),
+            Err(not_clean) if last => {
+                return Err(Error::Solver(format!("{what}: {}", not_clean.why)))
+            }
             solved => solved,
         };
         let (made, solved) = match solved {
@@ -231,14 +241,17 @@ pub fn pipeline(
             }
             Ok(solved) => {
                 spent += solved.report.iterations_total;
+                turned_every = false;
                 notes.push(format!(
                     "{what}: its mesh gave no honeycomb ({}); trying {}",
                     flaws(&solved.measures, None),
                     attempts[k + 1].1
                 ));
             }
-            Err((why, iterations)) => {
-                spent += iterations;
+            Err(not_clean) => {
+                spent += not_clean.iterations;
+                turned_every &= not_clean.turned;
+                let why = &not_clean.why;
                 notes.push(format!("{what}: {why}; trying {}", attempts[k + 1].1));
             }
         }
@@ -277,12 +290,12 @@ fn more_even_unturned(
         model_surface,
         options,
         walls,
-        false,
+        Otherwise::Why,
         progress,
     );
     let spent = match &again {
         Ok(Ok(again)) => again.report.iterations_total,
-        Ok(Err((_, iterations))) => *iterations,
+        Ok(Err(not_clean)) => not_clean.iterations,
         Err(_) => 0,
     };
     match again {
@@ -459,20 +472,33 @@ pub struct Solved {
     pub notes: Vec<String>,
 }
 
+/// What follows where walls across S give no clean honeycomb on a mesh the pipeline made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Otherwise {
+    /// Why (another mesh is tried next).
+    Why,
+    /// The guided projection (the strategy's fallback, on the last mesh).
+    Guided,
+    /// The guided projection, unless this mesh too turns a node over, as the ones before it
+    /// did (this many meshes in all): where no fitted sheet keeps every node facing up, the
+    /// guided projection from walls orthogonal to S has made no honeycomb either, and it
+    /// takes the longest (docs/walls.md, "Checks and retries").
+    GuidedUnlessTurned(usize),
+}
+
 /// Solves a mesh the pipeline made (its boundary cells may be dropped): walls across S, else
-/// (when `fallback`) the guided projection or, where that is no honeycomb, the unclean walls
-/// across that are one; or why walls across gave no clean honeycomb and the iterations that
-/// took.
-#[allow(clippy::type_complexity)]
+/// (as `otherwise` says) the guided projection or, where that is no honeycomb, the unclean
+/// walls across that are one; or why walls across gave no clean honeycomb and the iterations
+/// that took.
 fn solve_made(
     made: &Initialized,
     surface: &PolyMesh,
     model_surface: &Surface,
     options: &Strategy,
     walls: Walls,
-    fallback: bool,
+    otherwise: Otherwise,
     progress: &mut dyn FnMut(Step),
-) -> Result<std::result::Result<Solved, (String, usize)>> {
+) -> Result<std::result::Result<Solved, NotClean>> {
     options.optimize.validate(&made.base)?;
     if walls == Walls::Across {
         match across_or_none(
@@ -493,11 +519,15 @@ fn solve_made(
                 )?))
             }
             Ok(solved) => return Ok(Ok(solved)),
-            Err(not_clean) if !fallback => return Ok(Err((not_clean.why, not_clean.iterations))),
+            Err(not_clean) if otherwise == Otherwise::Why => return Ok(Err(not_clean)),
             Err(not_clean) if !options.guided_fallback => {
                 return Ok(not_clean.into_walls_as_they_came())
             }
             Err(not_clean) => {
+                if let (true, Otherwise::GuidedUnlessTurned(meshes)) = (not_clean.turned, otherwise)
+                {
+                    return Ok(Err(not_clean.turned_on_every_mesh(meshes)));
+                }
                 let solved = guided(
                     &made.base,
                     surface,
@@ -665,21 +695,38 @@ impl Solved {
 struct NotClean {
     why: String,
     iterations: usize,
-    honeycomb: Option<Solved>,
+    honeycomb: Option<Box<Solved>>,
+    /// A node was turned over (mirrored), which no repair turns back.
+    turned: bool,
 }
 
 impl NotClean {
     /// These walls across as they came where they are a honeycomb (a note says what they
     /// fall short of), else why there is none and the iterations it took.
-    fn into_walls_as_they_came(self) -> std::result::Result<Solved, (String, usize)> {
+    fn into_walls_as_they_came(self) -> std::result::Result<Solved, NotClean> {
         match self.honeycomb {
             Some(mut across) => {
                 across
                     .notes
                     .push(format!("{}; these are the walls as they came", self.why));
-                Ok(across)
+                Ok(*across)
             }
-            None => Err((self.why, self.iterations)),
+            None => Err(self),
+        }
+    }
+
+    /// Why there is no honeycomb where walls across S turned a node over on each of
+    /// `meshes` meshes, and the guided projection is therefore not tried.
+    fn turned_on_every_mesh(self, meshes: usize) -> NotClean {
+        NotClean {
+            why: format!(
+                "{}; walls across S turned a node over on each of the {meshes} meshes tried, \
+                 and the guided projection from walls orthogonal to S, which has made no \
+                 honeycomb wherever that happened, is not run (`--walls free` runs it; \
+                 `--walls uniform` stands every node axis along S's mean normal)",
+                self.why
+            ),
+            ..self
         }
     }
 
@@ -695,7 +742,7 @@ impl NotClean {
                     self.why,
                     flaws(&solved.measures, None)
                 ));
-                across
+                *across
             }
             _ => {
                 solved.report.iterations_total += self.iterations;
@@ -751,6 +798,7 @@ fn across_or_none(
                     .into(),
                 iterations: spent,
                 honeycomb: None,
+                turned: false,
             }));
         }
         Err(e) => return Err(e),
@@ -794,7 +842,7 @@ fn across_or_none(
         }
         None => {
             solved.notes.append(&mut notes);
-            let honeycomb = solved.report.honeycomb.then_some(solved);
+            let honeycomb = solved.report.honeycomb.then(|| Box::new(solved));
             Ok(Err(NotClean {
                 why: if mirrored {
                     format!("{why}, which a repair does not turn back")
@@ -803,6 +851,7 @@ fn across_or_none(
                 },
                 iterations: spent,
                 honeycomb,
+                turned: mirrored,
             }))
         }
     }

@@ -1,18 +1,10 @@
 //! Cells of one size where walls across S leave them uneven (`PipelineOptions::even_cells`),
 //! judged on the meshes the pipeline makes.
 
-use crate::init::lifted_grid;
-use crate::mesh::PolyMesh;
+use super::height_field;
 use crate::structure::measure;
 use crate::surface::Surface;
 use crate::{pipeline, Outcome, PipelineOptions, Progress};
-
-/// The height field `height` over the unit square, `n` x `n` squares each cut in two.
-fn height_field(n: usize, height: impl Fn(f64, f64) -> f64) -> Surface {
-    let (vertices, triangles) = lifted_grid(n, height);
-    let faces = triangles.iter().map(|t| t.to_vec()).collect();
-    Surface::new(PolyMesh::new(vertices, faces)).unwrap()
-}
 
 /// A steep bowl, `z = 1.7 r^2` over the unit square (slopes up to 67 degrees): a flattened
 /// lattice's cells on it come out uneven under walls across S.

@@ -7,11 +7,13 @@ mod init;
 mod optimize;
 mod parallel;
 mod quads;
+mod retries;
 mod shading;
 mod variants;
 
 use crate::generate::{design_surface, Shape};
-use crate::mesh::{validate_base_mesh, Connectivity};
+use crate::init::lifted_grid;
+use crate::mesh::{validate_base_mesh, Connectivity, PolyMesh};
 use crate::optimize::{OptimizeOptions, Weights};
 use crate::solve::SolverOptions;
 use crate::structure::Honeycomb;
@@ -34,6 +36,13 @@ fn guided_to_the_normals() -> OptimizeOptions {
         },
         ..OptimizeOptions::default()
     }
+}
+
+/// The height field `height` over the unit square, `n` x `n` squares each cut in two.
+fn height_field(n: usize, height: impl Fn(f64, f64) -> f64) -> Surface {
+    let (vertices, triangles) = lifted_grid(n, height);
+    let faces = triangles.iter().map(|t| t.to_vec()).collect();
+    Surface::new(PolyMesh::new(vertices, faces)).unwrap()
 }
 
 /// `../shared/data` beside the repository, when it is there (tests that read it skip otherwise).
