@@ -498,20 +498,25 @@ pub fn finish(
             rounded(s.light.before, 3)
         )
     });
+    // Chosen, not asked for, and not already followed by a solve per edge (pipeline): the
+    // other formulation takes another path.
+    let per_edge = if report.wall_normals == WallNormals::CellPoints
+        && report.per_edge_fallback.is_none()
+        && !cell_points_asked
+    {
+        ", and so may --per-edge-normals"
+    } else {
+        ""
+    };
+    // A pipeline's guided projection that ran its second try (hundreds of iterations, without
+    // the fairness) has had what more iterations would give.
+    let advice = match report.second_try {
+        Some(true) => String::new(),
+        _ => format!(". More --iterations or a larger --eps may help{per_edge}"),
+    };
     Err(Error::Solver(format!(
-        "{device}the result is {why}; the outputs in {} are for inspection. More --iterations \
-         or a larger --eps may help{}{}{}",
+        "{device}the result is {why}; the outputs in {} are for inspection{advice}{}{}",
         dir.display(),
-        // Chosen, not asked for, and not already followed by a solve per edge (pipeline):
-        // the other formulation takes another path.
-        if report.wall_normals == WallNormals::CellPoints
-            && report.per_edge_fallback.is_none()
-            && !cell_points_asked
-        {
-            ", and so may --per-edge-normals"
-        } else {
-            ""
-        },
         if nonconvex_cells == 0 {
             String::new()
         } else {

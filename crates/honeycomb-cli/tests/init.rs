@@ -3,8 +3,8 @@
 mod common;
 
 use common::{
-    assert_clean_failure, bowl_file, number, pipeline, read_json, read_written_mesh, run, stderr,
-    surface_file, TempDir,
+    assert_clean_failure, bowl_file, number, paraboloid_file, pipeline, read_json,
+    read_written_mesh, run, stderr, surface_file, TempDir,
 };
 use honeycomb::mesh::validate_base_mesh;
 use std::path::Path;
@@ -659,6 +659,26 @@ fn pipeline_evens_uneven_cells() {
     );
     let (asked, _) = cv("--even-cells");
     assert_eq!(asked, evened);
+}
+
+/// On a deep bowl, `z = 4 r^2` over the unit square, walls across S turn a node over on
+/// every mesh `pipeline` lays: it ends in one error saying so and naming `--walls free`,
+/// without writing anything. Asked for, `--walls free` runs the guided projection with its
+/// retries and is no honeycomb either: its error points to the outputs for inspection, and
+/// not to more iterations, which its second try has had.
+#[test]
+fn pipeline_says_when_its_retries_are_spent() {
+    let tmp = TempDir::new("deep_bowl");
+    let surface = paraboloid_file(&tmp, 4.0, "deep_bowl.obj");
+    let dir = tmp.join("across");
+    let said = ["turned a node over on each of the 2 meshes", "--walls free"];
+    assert_clean_failure(&pipeline(&surface, &dir, &["-q"]), &said, Some(&dir));
+    let free = tmp.join("free");
+    let out = pipeline(&surface, &free, &["--walls", "free", "-q"]);
+    let line = assert_clean_failure(&out, &["not a honeycomb", "for inspection"], None);
+    assert!(!line.contains("--iterations"), "{line}");
+    let report = read_json(&tmp.join("free.failed"), "report.json");
+    assert_eq!(report["second_try"], true, "{report}");
 }
 
 /// A capping given one iteration on a steep bowl ends with its vertices still off S (the

@@ -703,6 +703,8 @@ fn a_failed_run_leaves_a_good_directory_and_writes_beside_it() {
     let line = assert_clean_failure(&failing(&out), &["not a honeycomb"], None);
     let named = format!("the outputs in {} are for inspection", failed.display());
     assert!(line.contains(&named), "{line}");
+    // One iteration is far from what a solve may take: more are worth asking for.
+    assert!(line.contains("More --iterations"), "{line}");
     assert_eq!(contents(&out), good, "the good directory changed");
     let report = read_json(&failed, "report.json");
     assert_eq!(report["honeycomb"], false, "{report}");

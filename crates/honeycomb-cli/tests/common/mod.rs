@@ -304,12 +304,18 @@ pub fn pipeline(surface: &Path, dir: &Path, extra: &[&str]) -> Output {
 /// A steep bowl, `z = 1.7 r^2` over the unit square (slopes up to 67 degrees), written as an
 /// OBJ of 60 x 60 squares each cut in two.
 pub fn bowl_file(tmp: &TempDir) -> PathBuf {
+    paraboloid_file(tmp, 1.7, "bowl.obj")
+}
+
+/// The bowl `z = k r^2` over the unit square (`r` from its centre), written as `name`: an OBJ
+/// of 60 x 60 squares each cut in two.
+pub fn paraboloid_file(tmp: &TempDir, k: f64, name: &str) -> PathBuf {
     let n = 60;
     let mut text = String::new();
     for j in 0..=n {
         for i in 0..=n {
             let (x, y) = (i as f64 / n as f64, j as f64 / n as f64);
-            let z = 1.7 * ((x - 0.5).powi(2) + (y - 0.5).powi(2));
+            let z = k * ((x - 0.5).powi(2) + (y - 0.5).powi(2));
             text += &format!("v {x} {y} {z}\n");
         }
     }
@@ -320,7 +326,7 @@ pub fn bowl_file(tmp: &TempDir) -> PathBuf {
             text += &format!("f {} {} {}\n", id(i, j), id(i + 1, j + 1), id(i, j + 1));
         }
     }
-    let surface = tmp.join("bowl.obj");
+    let surface = tmp.join(name);
     std::fs::write(&surface, text).unwrap();
     surface
 }
