@@ -664,8 +664,9 @@ fn pipeline_evens_uneven_cells() {
 /// On a deep bowl, `z = 4 r^2` over the unit square, walls across S turn a node over on
 /// every mesh `pipeline` lays: it ends in one error saying so and naming `--walls free`,
 /// without writing anything. Asked for, `--walls free` runs the guided projection with its
-/// retries and is no honeycomb either: its error points to the outputs for inspection, and
-/// not to more iterations, which its second try has had.
+/// retries and is no honeycomb either: its error counts the iterations of every try and
+/// points to the outputs for inspection, not to more iterations, which its second try has
+/// had.
 #[test]
 fn pipeline_says_when_its_retries_are_spent() {
     let tmp = TempDir::new("deep_bowl");
@@ -675,7 +676,12 @@ fn pipeline_says_when_its_retries_are_spent() {
     assert_clean_failure(&pipeline(&surface, &dir, &["-q"]), &said, Some(&dir));
     let free = tmp.join("free");
     let out = pipeline(&surface, &free, &["--walls", "free", "-q"]);
-    let line = assert_clean_failure(&out, &["not a honeycomb", "for inspection"], None);
+    let said = [
+        "not a honeycomb",
+        "in all, every try counted",
+        "for inspection",
+    ];
+    let line = assert_clean_failure(&out, &said, None);
     assert!(!line.contains("--iterations"), "{line}");
     let report = read_json(&tmp.join("free.failed"), "report.json");
     assert_eq!(report["second_try"], true, "{report}");

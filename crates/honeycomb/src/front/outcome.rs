@@ -55,8 +55,13 @@ impl Verdict {
                 unmet,
             };
         }
+        // A pipeline's last solve after its other tries: what they all took too.
+        let in_all = match report.iterations_total {
+            total if total > report.iterations => format!(" ({total} in all, every try counted)"),
+            _ => String::new(),
+        };
         let mut why = format!(
-            "not a honeycomb after {} iterations: omega_max {:.3} deg, delta_max {:.1e} \
+            "not a honeycomb after {} iterations{in_all}: omega_max {:.3} deg, delta_max {:.1e} \
              (tolerance {} deg, {:.0e})",
             report.iterations,
             m.omega_max_deg,
