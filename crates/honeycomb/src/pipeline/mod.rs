@@ -140,8 +140,8 @@ pub fn pipeline(
     };
     let mut attempts = attempts(&options.init, walls);
     let mut spent = 0;
-    // Whether walls across S turned a node over on every mesh tried so far.
-    let mut turned_every = true;
+    // Whether walls across S mirrored a node on every mesh tried so far.
+    let mut mirrored_every = true;
     for k in 0..attempts.len() {
         let (init_options, what, facing) = attempts[k].clone();
         let init_options = &init_options;
@@ -157,7 +157,7 @@ pub fn pipeline(
                 Ok(made) => made,
                 // S too curved for the cells asked is so whichever way the grid is laid.
                 Err(e) if !last && !matches!(e, Error::Unsuited(_)) => {
-                    turned_every = false;
+                    mirrored_every = false;
                     notes.push(format!(
                         "{what}: {}; trying {}",
                         message(&e),
@@ -187,10 +187,10 @@ pub fn pipeline(
             Walls::Uniform if !planar => Walls::Free,
             w => w,
         };
-        let otherwise = match (last, turned_every) {
+        let otherwise = match (last, mirrored_every) {
             (false, _) => Otherwise::Why,
             (true, false) => Otherwise::Guided,
-            (true, true) => Otherwise::GuidedUnlessTurned(k + 1),
+            (true, true) => Otherwise::GuidedUnlessMirrored(k + 1),
         };
         let solved = solve_made(
             &made,
@@ -241,7 +241,7 @@ pub fn pipeline(
             }
             Ok(solved) => {
                 spent += solved.report.iterations_total;
-                turned_every = false;
+                mirrored_every = false;
                 notes.push(format!(
                     "{what}: its mesh gave no honeycomb ({}); trying {}",
                     flaws(&solved.measures, None),
@@ -250,7 +250,7 @@ pub fn pipeline(
             }
             Err(not_clean) => {
                 spent += not_clean.iterations;
-                turned_every &= not_clean.turned;
+                mirrored_every &= not_clean.mirrored;
                 let why = &not_clean.why;
                 notes.push(format!("{what}: {why}; trying {}", attempts[k + 1].1));
             }
@@ -479,11 +479,11 @@ enum Otherwise {
     Why,
     /// The guided projection (the strategy's fallback, on the last mesh).
     Guided,
-    /// The guided projection, unless this mesh too turns a node over, as the ones before it
-    /// did (this many meshes in all): where no fitted sheet keeps every node facing up, the
+    /// The guided projection, unless this mesh too mirrors a node, as the ones before it did
+    /// (this many meshes in all): where no fitted sheet keeps every node facing up, the
     /// guided projection from walls orthogonal to S has made no honeycomb either, and it
     /// takes the longest (docs/walls.md, "Checks and retries").
-    GuidedUnlessTurned(usize),
+    GuidedUnlessMirrored(usize),
 }
 
 /// Solves a mesh the pipeline made (its boundary cells may be dropped): walls across S, else
@@ -524,9 +524,10 @@ fn solve_made(
                 return Ok(not_clean.into_walls_as_they_came())
             }
             Err(not_clean) => {
-                if let (true, Otherwise::GuidedUnlessTurned(meshes)) = (not_clean.turned, otherwise)
+                if let (true, Otherwise::GuidedUnlessMirrored(meshes)) =
+                    (not_clean.mirrored, otherwise)
                 {
-                    return Ok(Err(not_clean.turned_on_every_mesh(meshes)));
+                    return Ok(Err(not_clean.mirrored_on_every_mesh(meshes)));
                 }
                 let solved = guided(
                     &made.base,
@@ -696,8 +697,8 @@ struct NotClean {
     why: String,
     iterations: usize,
     honeycomb: Option<Box<Solved>>,
-    /// A node was turned over (mirrored), which no repair turns back.
-    turned: bool,
+    /// A node was mirrored (turned over), which no repair turns back.
+    mirrored: bool,
 }
 
 impl NotClean {
@@ -715,9 +716,9 @@ impl NotClean {
         }
     }
 
-    /// Why there is no honeycomb where walls across S turned a node over on each of
-    /// `meshes` meshes, and the guided projection is therefore not tried.
-    fn turned_on_every_mesh(self, meshes: usize) -> NotClean {
+    /// Why there is no honeycomb where walls across S mirrored a node on each of `meshes`
+    /// meshes, and the guided projection is therefore not tried.
+    fn mirrored_on_every_mesh(self, meshes: usize) -> NotClean {
         NotClean {
             why: format!(
                 "{}; walls across S turned a node over on each of the {meshes} meshes tried, \
@@ -798,7 +799,7 @@ fn across_or_none(
                     .into(),
                 iterations: spent,
                 honeycomb: None,
-                turned: false,
+                mirrored: false,
             }));
         }
         Err(e) => return Err(e),
@@ -851,7 +852,7 @@ fn across_or_none(
                 },
                 iterations: spent,
                 honeycomb,
-                turned: mirrored,
+                mirrored,
             }))
         }
     }
