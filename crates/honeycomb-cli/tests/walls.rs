@@ -262,17 +262,17 @@ fn bench_roofs_has_a_row_per_surface() {
     }
     let hexes = rows.iter().find(|r| r["surface"] == "hexes.obj").unwrap();
     assert_eq!(hexes["status"], "skipped", "{hexes}");
-    // The dome's cells are even already: evening (the default) leaves its row as it was.
+    // The dome's cells are even already: evening (the default) leaves its row as it was, but
+    // for the few steps that place the vertices on the walls its provisional fit goes on to.
     let fitted = bench_rows(&roofs, &["--no-even-cells"]);
     let fitted = fitted.iter().find(|r| r["surface"] == "dome.obj").unwrap();
     assert!(number(dome_row, "edge_length_cv") < 0.12, "{dome_row}");
-    for key in [
-        "cells",
-        "iterations_total",
-        "edge_length_cv",
-        "axis_normal_mean_deg",
-    ] {
-        assert_eq!(fitted[key], dome_row[key], "{key}");
+    assert_eq!(fitted["cells"], dome_row["cells"]);
+    let spent = number(dome_row, "iterations_total") - number(fitted, "iterations_total");
+    assert!((1.0..=4.0).contains(&spent), "{spent}");
+    for (key, within) in [("edge_length_cv", 0.005), ("axis_normal_mean_deg", 0.1)] {
+        let (a, b) = (number(fitted, key), number(dome_row, key));
+        assert!((a - b).abs() <= within, "{key}: {a} -> {b}");
     }
     let table = run([
         "bench",

@@ -22,6 +22,7 @@ mod walls;
 pub use walls::Walls;
 
 use evening::evened;
+pub(crate) use evening::UNEVEN_CELLS_CV;
 
 use crate::error::{rounded, short_vector, Error, Result};
 use crate::init::{flatten_viewed, init, Align, Flattener, InitOptions, Initialized, Method};
@@ -30,7 +31,9 @@ use crate::optimize::{
     optimize, optimize_made_mesh, Attempt, AxesOptions, Frame, OptimizeOptions, Optimized,
     WallNormals, DEFAULT_THICKNESS,
 };
-use crate::reciprocal::{walls_across, Across, AcrossOptions, AxisTargets, Stage};
+use crate::reciprocal::{
+    walls_across, Across, AcrossOptions, AxisTargets, Stage, PROVISIONAL_OMEGA_DEG,
+};
 use crate::report::Report;
 use crate::solve::IterationInfo;
 use crate::structure::{measure, Measures};
@@ -273,7 +276,7 @@ fn more_even_unturned(
     progress: &mut dyn FnMut(Step),
 ) -> (Initialized, Solved, Option<String>) {
     let turned = made.report.flat.as_ref().and_then(|f| f.hole_turn_deg);
-    let uneven = solved.measures.edge_length_cv >= evening::UNEVEN_CELLS_CV;
+    let uneven = solved.measures.edge_length_cv >= UNEVEN_CELLS_CV;
     let (Some(turn), true, Walls::Across) = (turned, uneven, walls) else {
         return (made, solved, None);
     };
@@ -470,6 +473,9 @@ pub struct Solved {
     pub measures: Measures,
     pub report: Report,
     pub notes: Vec<String>,
+    /// Walls across S fitted provisionally (`AcrossOptions::provisional_if_uneven`), for the
+    /// evening to start from: no result yet.
+    pub provisional: bool,
 }
 
 /// What follows where walls across S give no clean honeycomb on a mesh the pipeline made.
@@ -501,45 +507,66 @@ fn solve_made(
 ) -> Result<std::result::Result<Solved, NotClean>> {
     options.optimize.validate(&made.base)?;
     if walls == Walls::Across {
-        match across_or_none(
+        let mut across_options = options.across.clone();
+        if options.even_cells {
+            across_options.provisional_if_uneven = Some(UNEVEN_CELLS_CV);
+        }
+        let across = |across_options: &AcrossOptions, progress: &mut dyn FnMut(Step)| {
+            across_or_none(
+                &made.base,
+                surface,
+                model_surface,
+                &options.optimize,
+                across_options,
+                progress,
+            )
+        };
+        let not_clean = match across(&across_options, progress)? {
+            Ok(solved) if !options.even_cells => return Ok(Ok(solved)),
+            Ok(solved) => {
+                let fitted_notes = solved.notes.len();
+                let evened = evened(solved, surface, model_surface, &options.optimize, progress)?;
+                if !evened.provisional {
+                    return Ok(Ok(evened));
+                }
+                // The evening kept nothing of a provisional fit: the walls fitted to unit
+                // length after all, with what the evening tried said and counted.
+                let tried = evened.report.iterations_total;
+                across_options.provisional_if_uneven = None;
+                match across(&across_options, progress)? {
+                    Ok(mut solved) => {
+                        solved.report.iterations_total += tried;
+                        solved
+                            .notes
+                            .extend(evened.notes.into_iter().skip(fitted_notes));
+                        return Ok(Ok(solved));
+                    }
+                    Err(not_clean) => NotClean {
+                        iterations: not_clean.iterations + tried,
+                        ..not_clean
+                    },
+                }
+            }
+            Err(not_clean) => not_clean,
+        };
+        if otherwise == Otherwise::Why {
+            return Ok(Err(not_clean));
+        }
+        if !options.guided_fallback {
+            return Ok(not_clean.into_walls_as_they_came());
+        }
+        if let (true, Otherwise::GuidedUnlessMirrored(meshes)) = (not_clean.mirrored, otherwise) {
+            return Ok(Err(not_clean.mirrored_on_every_mesh(meshes)));
+        }
+        let solved = guided(
             &made.base,
             surface,
             model_surface,
-            &options.optimize,
-            &options.across,
+            options,
+            Walls::Free,
             progress,
-        )? {
-            Ok(solved) if options.even_cells => {
-                return Ok(Ok(evened(
-                    solved,
-                    surface,
-                    model_surface,
-                    &options.optimize,
-                    progress,
-                )?))
-            }
-            Ok(solved) => return Ok(Ok(solved)),
-            Err(not_clean) if otherwise == Otherwise::Why => return Ok(Err(not_clean)),
-            Err(not_clean) if !options.guided_fallback => {
-                return Ok(not_clean.into_walls_as_they_came())
-            }
-            Err(not_clean) => {
-                if let (true, Otherwise::GuidedUnlessMirrored(meshes)) =
-                    (not_clean.mirrored, otherwise)
-                {
-                    return Ok(Err(not_clean.mirrored_on_every_mesh(meshes)));
-                }
-                let solved = guided(
-                    &made.base,
-                    surface,
-                    model_surface,
-                    options,
-                    Walls::Free,
-                    progress,
-                )?;
-                return Ok(Ok(not_clean.or_better(solved)));
-            }
-        }
+        )?;
+        return Ok(Ok(not_clean.or_better(solved)));
     }
     Ok(Ok(guided(
         &made.base,
@@ -655,6 +682,7 @@ pub fn solve_base(
         measures,
         report,
         notes,
+        provisional: false,
     };
     let mut solved = match not_clean {
         Some(not_clean) => not_clean.or_better(solved),
@@ -688,6 +716,7 @@ impl Solved {
         self.notes.extend(thinner);
         self.optimized = optimized;
         self.measures = measures;
+        self.provisional = false;
     }
 }
 
@@ -807,7 +836,31 @@ fn across_or_none(
     let (h, m) = (&mut across.honeycomb, &mut across.measures);
     let thinner = uncross(h, &across.connectivity, m, model_surface, options.thickness);
     let mut notes: Vec<String> = thinner.into_iter().collect();
-    if is_clean(&across.measures, options.min_edge) {
+    let nodes_deg = match across.provisional {
+        true => PROVISIONAL_OMEGA_DEG,
+        false => CLEAN_OMEGA_DEG,
+    };
+    let clean = is_clean_to(&across.measures, options.min_edge, nodes_deg);
+    if across.provisional && !clean {
+        // Flawed besides its nodes' last digits: walls across fitted to unit length from the
+        // start, to be checked and repaired as any other.
+        let exact = AcrossOptions {
+            provisional_if_uneven: None,
+            ..across_options
+        };
+        let again = across_or_none(base, surface, model_surface, options, &exact, progress)?;
+        return Ok(match again {
+            Ok(mut solved) => {
+                solved.report.iterations_total += spent;
+                Ok(solved)
+            }
+            Err(not_clean) => Err(NotClean {
+                iterations: not_clean.iterations + spent,
+                ..not_clean
+            }),
+        });
+    }
+    if clean {
         let mut solved = across_solved(across, options, start.elapsed().as_secs_f64());
         solved.notes.append(&mut notes);
         return Ok(Ok(solved));
@@ -892,7 +945,12 @@ fn flaws(m: &Measures, min_edge: Option<f64>) -> String {
 /// within the honeycomb tolerances), no wall quad crossed, every vertex on S and every edge at
 /// least `min_edge` long (model units).
 fn is_clean(m: &Measures, min_edge: Option<f64>) -> bool {
-    m.omega_max_deg <= CLEAN_OMEGA_DEG
+    is_clean_to(m, min_edge, CLEAN_OMEGA_DEG)
+}
+
+/// `is_clean` with the nodes within `omega_deg` of 120 degrees.
+fn is_clean_to(m: &Measures, min_edge: Option<f64>, omega_deg: f64) -> bool {
+    m.omega_max_deg <= omega_deg
         && m.delta_max <= CLEAN_DELTA
         && m.nonconvex_walls == 0
         && m.closeness_max <= ACROSS_CLOSENESS
@@ -1221,6 +1279,7 @@ fn across_solved(across: Across, options: &OptimizeOptions, seconds: f64) -> Sol
         measures: across.measures,
         report,
         notes,
+        provisional: across.provisional,
     }
 }
 
@@ -1338,5 +1397,6 @@ fn guided(
         measures: s.measures,
         report,
         notes,
+        provisional: false,
     })
 }

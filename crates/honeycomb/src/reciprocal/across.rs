@@ -4,8 +4,8 @@
 //! the cells that stand out beyond S's border trimmed.
 
 use super::{
-    fit_axis_field, place, trim_overhang, AxisFieldOptions, AxisTargets, FittedSheet,
-    PlacementOptions, Sheet,
+    edge_cv_without, place, trim::overhanging_cells, trim_overhang, unit_gap, AxisFieldOptions,
+    AxisFit, AxisTargets, FittedSheet, PlacementOptions, Sheet, ON_S,
 };
 use crate::error::Result;
 use crate::geometry::Vec3;
@@ -22,6 +22,14 @@ pub const DROP_ROUNDS: usize = 8;
 /// ring a few cells long at each such place; a long border (a narrow roof, a ring) holds more
 /// of them than the share a designer's mesh may lose (`crate::optimize::MAX_DROPPED_SHARE`).
 pub const GRID_DROPPED_SHARE: f64 = 0.06;
+/// How close to unit walls (in `|p_a - p_b|^2 - 1`) a provisional sheet is fitted
+/// ([`AcrossOptions::provisional_if_uneven`]): its fold is set (the cells placed on it are as
+/// uneven as on the exact one), its nodes a fraction of a degree off 120.
+pub const PROVISIONAL_GAP: f64 = 1e-2;
+/// Dropping broken boundary cells and placing the rest again evens the cells by up to about
+/// this much (edge cv): a provisional result with cells to drop is found even below the
+/// evening's threshold plus this.
+const DROPS_EVEN_BY: f64 = 0.015;
 
 #[derive(Clone, Debug)]
 pub struct AcrossOptions {
@@ -39,6 +47,12 @@ pub struct AcrossOptions {
     pub max_trimmed_share: f64,
     /// What the node axes are fitted to.
     pub targets: AxisTargets,
+    /// Where the cells placed on the sheet (fitted from the base mesh) are this uneven (edge
+    /// cv) or more, the sheet is fitted only to [`PROVISIONAL_GAP`] and the result is
+    /// `provisional`: the evening fits the walls again from where its steps get to, and would throw
+    /// away the fit's last steps. Otherwise the fit goes on from where it stopped to unit
+    /// walls, and the vertices are put on those from where they stand.
+    pub provisional_if_uneven: Option<f64>,
 }
 
 impl Default for AcrossOptions {
@@ -52,6 +66,7 @@ impl Default for AcrossOptions {
             max_dropped_share: GRID_DROPPED_SHARE,
             max_trimmed_share: 0.01,
             targets: AxisTargets::Normals,
+            provisional_if_uneven: None,
         }
     }
 }
@@ -72,6 +87,9 @@ pub struct Across {
     pub solve: SolveReport,
     /// The sheet's walls reached unit length.
     pub field_converged: bool,
+    /// The sheet fitted only to [`PROVISIONAL_GAP`] (`AcrossOptions::provisional_if_uneven`),
+    /// not to unit walls.
+    pub provisional: bool,
 }
 
 /// Which solve an iteration belongs to.
@@ -96,7 +114,8 @@ pub struct Start<'a> {
 
 /// A honeycomb on `base` (a valid base mesh on `surface`, both in model units) with walls
 /// across `surface`, measured against `model_surface` (the same surface); the sheet from the
-/// base mesh's cells, or from `start` (on the base mesh's faces).
+/// base mesh's cells, or from `start` (on the base mesh's faces). Provisional where
+/// `options.provisional_if_uneven` finds the cells uneven (never from a `start`).
 pub fn walls_across(
     base: &PolyMesh,
     start: Option<Start>,
@@ -124,14 +143,8 @@ pub fn walls_across(
         }),
     };
     let mut given_axes = start.map(|s| s.axes.to_vec());
-    let (mut field_iterations, mut dropped_cells) = (0, 0);
-    let mut solves: Option<SolveReport> = None;
-    let mut chain = |next: SolveReport| {
-        solves = Some(match solves.take() {
-            Some(s) => s.then(next),
-            None => next,
-        })
-    };
+    let mut dropped_cells = 0;
+    let mut solves = Solves::default();
     let mut drops = 0;
     // Where the last placement put the vertices that are kept; at first, where a start's
     // steps put them (near S and near its walls already, so its placement starts warm too).
@@ -141,6 +154,15 @@ pub fn walls_across(
         edges_along_s: options.targets != AxisTargets::Normals,
         ..options.placement.clone()
     };
+    // Until the cells are found even enough for no evening.
+    let mut provisional = options.provisional_if_uneven.filter(|_| start.is_none());
+    // A fit of the rest after a provisional round of drops takes up the guides' fade and the
+    // regularization where the last fit left them, as if it went on.
+    let mut field_options = options.field.clone();
+    let mut first_round: Option<FirstRound> = None;
+    let thickness = options
+        .thickness
+        .unwrap_or(options.default_depth * frame.unit);
     loop {
         let targets: Vec<Vec3> = match &given_axes {
             Some(axes) => axes.clone(),
@@ -159,53 +181,110 @@ pub fn walls_across(
             .zip(&edges)
             .map(|(&[a, b], &d)| d.cross(targets[a] + targets[b]).normalized())
             .collect();
-        let field = fit_axis_field(
-            &sheet,
-            &points,
-            &targets,
-            &edges,
-            &facing,
-            &options.field,
-            &mut |i| progress(Stage::AxisField, i),
-        )?;
-        field_iterations += field.solve.iterations;
-        let field_converged = field.solve.converged;
-        chain(field.solve);
-        points = field.points;
-        let placed = place(
-            &mesh,
-            placed_before.as_deref(),
-            &conn,
-            FittedSheet {
+        let tolerance = match provisional {
+            Some(_) => options.field.tolerance.max(PROVISIONAL_GAP),
+            None => options.field.tolerance,
+        };
+        let new_fit = |points: &[Vec3]| {
+            AxisFit::new(&sheet, points, &targets, &edges, &facing, &field_options)
+        };
+        // None where the sheet is fitted already (the rest of one whose broken cells were
+        // dropped); kept until the result is, to go on from where a provisional fit stopped.
+        let mut fit = match unit_gap(&sheet, &points) < tolerance {
+            true => None,
+            false => Some(new_fit(&points)?),
+        };
+        let mut field_converged = true;
+        if let Some(fit) = &mut fit {
+            field_converged = fit.run(tolerance, &mut |i| progress(Stage::AxisField, i))?;
+            points = fit.points();
+        }
+        let placed_on = |points: &[Vec3],
+                         from: Option<&[Vec3]>,
+                         how,
+                         progress: &mut dyn FnMut(Stage, &IterationInfo)| {
+            let sheet = FittedSheet {
                 sheet: &sheet,
-                points: &points,
-            },
-            &normalized,
-            &placement,
-            &mut |i| progress(Stage::Placement, i),
-        )?;
-        chain(placed.solve);
-        let vertices = placed.vertices.iter().map(|&p| frame.to_model(p)).collect();
-        let thickness = options
-            .thickness
-            .unwrap_or(options.default_depth * frame.unit);
-        let honeycomb = Honeycomb::new(
-            PolyMesh::new(vertices, mesh.faces.clone()),
-            &conn,
-            placed.axes,
-            thickness,
-        );
-        let measures = measure(&honeycomb, model_surface);
-        let broken = broken_boundary_cells(&honeycomb, &conn, &measures);
+                points,
+            };
+            let placed = place(&mesh, from, &conn, sheet, &normalized, how, &mut |i| {
+                progress(Stage::Placement, i)
+            })?;
+            let vertices = placed.vertices.iter().map(|&p| frame.to_model(p)).collect();
+            let mesh = PolyMesh::new(vertices, mesh.faces.clone());
+            let honeycomb = Honeycomb::new(mesh, &conn, placed.axes.clone(), thickness);
+            let measures = measure(&honeycomb, model_surface);
+            Ok::<_, crate::error::Error>((placed, honeycomb, measures))
+        };
+        let (mut placed, mut honeycomb, mut measures) =
+            placed_on(&points, placed_before.as_deref(), &placement, progress)?;
+        let mut broken = broken_boundary_cells(&honeycomb, &conn, &measures);
+        let share = options.max_trimmed_share;
+        let margin = if broken.is_empty() {
+            0.0
+        } else {
+            DROPS_EVEN_BY
+        };
+        let cv = edge_cv_without(&honeycomb, &conn, &measures, &broken, share);
+        let even = |uneven| cv < uneven + margin;
+        let last = |broken: &[usize]| {
+            broken.is_empty()
+                || drops == options.max_drops
+                || dropped_cells + broken.len() > allowed
+        };
+        // A provisional result goes to the evening only as one the pipeline would keep, but for
+        // its nodes' last digits; else the fit goes on to unit walls.
+        let flawed = || last(&broken) && !usable(&honeycomb, &conn, &measures, share);
+        let finish = provisional.is_some_and(even);
+        let broke = provisional.is_some() && !finish && flawed();
+        if let (true, Some(first)) = (finish || broke, first_round.take()) {
+            // Cells were dropped where the provisional sheet broke them, which a sheet of unit
+            // walls breaks otherwise: back to the first round, its sheet fitted on to unit
+            // walls (its guides and regularization where they were), and the rounds again.
+            if let Some(field) = fit.map(AxisFit::finish) {
+                solves.fit(field);
+            }
+            solves.then(placed.solve);
+            (mesh, conn, points, field_options) =
+                (first.mesh, first.conn, first.points, first.field);
+            sheet = Sheet::new(&mesh, &conn)?;
+            model_base = base.clone();
+            (dropped_cells, drops, placed_before) = (0, 0, None);
+            (provisional, unconverged_before) = (None, false);
+            continue;
+        }
+        if finish || broke {
+            // The fit taken on to unit walls, and the vertices placed on those walls from where
+            // they stand (as after a round of drops) or, where the provisional result is
+            // flawed, as on the walls of a fit that never stopped.
+            provisional = None;
+            let mut exact = match fit.take() {
+                Some(fit) => fit,
+                None => new_fit(&points)?,
+            };
+            let to_unit = options.field.tolerance;
+            field_converged = exact.run(to_unit, &mut |i| progress(Stage::AxisField, i))?;
+            points = exact.points();
+            fit = Some(exact);
+            let stood = placed.vertices.clone();
+            let from = if broke {
+                placed_before.as_deref()
+            } else {
+                Some(&stood[..])
+            };
+            solves.then(placed.solve);
+            (placed, honeycomb, measures) = placed_on(&points, from, &placement, progress)?;
+            broken = broken_boundary_cells(&honeycomb, &conn, &measures);
+        }
         // A sheet whose fit falls short of unit walls twice in a row folds too sharply for
         // fewer boundary cells to help.
         let hopeless = !field_converged && unconverged_before;
         unconverged_before = !field_converged;
-        if broken.is_empty()
-            || hopeless
-            || drops == options.max_drops
-            || dropped_cells + broken.len() > allowed
-        {
+        if hopeless || last(&broken) {
+            if let Some(field) = fit.map(AxisFit::finish) {
+                solves.fit(field);
+            }
+            solves.then(placed.solve);
             let across = Across {
                 honeycomb,
                 connectivity: conn,
@@ -213,15 +292,32 @@ pub fn walls_across(
                 measures,
                 dropped_cells,
                 trimmed_cells: 0,
-                field_iterations,
-                solve: solves.take().expect("a solve ran"),
+                field_iterations: solves.field_iterations,
+                solve: solves.all.expect("a solve ran"),
                 field_converged,
+                provisional: provisional.is_some(),
             };
             return Ok(trim_overhang(
                 across,
                 options.max_trimmed_share,
                 model_surface,
             ));
+        }
+        if let Some(field) = fit.map(AxisFit::finish) {
+            if let (Some(_), Some(last)) = (provisional, field.history.last()) {
+                field_options.faded += field.iterations;
+                field_options.eps = last.eps;
+            }
+            solves.fit(field);
+        }
+        solves.then(placed.solve);
+        if provisional.is_some() && drops == 0 {
+            first_round = Some(FirstRound {
+                mesh: mesh.clone(),
+                conn: conn.clone(),
+                points: points.clone(),
+                field: field_options.clone(),
+            });
         }
         // The sheet's points without the broken cells: each dropped cell's point becomes the
         // ghost of the walls it bordered.
@@ -248,6 +344,48 @@ pub fn walls_across(
         sheet = rest_sheet;
         dropped_cells += broken.len();
         drops += 1;
+    }
+}
+
+/// Where a provisional first round stood before it dropped cells: its mesh, its sheet's
+/// points, and its fit's options with the guides and regularization where it left them.
+struct FirstRound {
+    mesh: PolyMesh,
+    conn: Connectivity,
+    points: Vec<Vec3>,
+    field: AxisFieldOptions,
+}
+
+/// A node this far off 120 degrees in a provisional result (the sheet fitted to
+/// [`PROVISIONAL_GAP`]) is mirrored, as one of 120 degrees or so is in an exact one.
+pub const PROVISIONAL_OMEGA_DEG: f64 = 2.0;
+
+/// Whether walls across S fitted provisionally may go to the evening as they stand: no node
+/// mirrored, no wall crossed and every vertex on S once the cells that stand out beyond its
+/// border are trimmed ([`trim_overhang`], at most `share` of the cells).
+fn usable(h: &Honeycomb, conn: &Connectivity, m: &Measures, share: f64) -> bool {
+    let on_s = m.closeness_max <= ON_S || !overhanging_cells(h, conn, m, share).is_empty();
+    m.omega_max_deg < PROVISIONAL_OMEGA_DEG && m.nonconvex_walls == 0 && on_s
+}
+
+/// Every solve, one after the other, and the iterations of the sheet's fits among them.
+#[derive(Default)]
+struct Solves {
+    all: Option<SolveReport>,
+    field_iterations: usize,
+}
+
+impl Solves {
+    fn then(&mut self, next: SolveReport) {
+        self.all = Some(match self.all.take() {
+            Some(s) => s.then(next),
+            None => next,
+        })
+    }
+
+    fn fit(&mut self, field: SolveReport) {
+        self.field_iterations += field.iterations;
+        self.then(field);
     }
 }
 

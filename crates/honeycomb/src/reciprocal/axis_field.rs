@@ -34,6 +34,9 @@ pub struct AxisFieldOptions {
     pub facing: f64,
     /// The factor the fitting weights fade by per iteration.
     pub fade: f64,
+    /// Iterations the fitting weights have faded by already: the fit of the rest of a sheet
+    /// whose broken cells were dropped before its fit was done goes on with them as faded.
+    pub faded: usize,
     pub eps: f64,
     /// The factor a step may multiply the energy by before it is halved: close to 1, since
     /// the sheet's rows bend it far and a step the linearization overrates only wanders.
@@ -52,6 +55,7 @@ impl Default for AxisFieldOptions {
             across: 1.0,
             facing: 0.0,
             fade: 0.5,
+            faded: 0,
             eps: 1e-3,
             energy_growth: 1.1,
             tolerance: 1e-8,
@@ -69,10 +73,10 @@ const GHOSTS_SETTLE_ABOVE_GAP: f64 = 1e-2;
 /// set, and the last steps only make its walls unit.
 const GUIDES_RELEASED_BELOW: f64 = 1e-3;
 
-/// The fitted sheet.
-pub struct AxisField {
-    pub points: Vec<Vec3>,
-    pub solve: SolveReport,
+/// How far `points` of `sheet` are from unit walls: the largest `| |p_a - p_b|^2 - 1 |`.
+pub fn unit_gap(sheet: &Sheet, points: &[Vec3]) -> f64 {
+    let y: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+    max_gap(&y, &sheet.unit_pairs())
 }
 
 /// The largest `| |p_a - p_b|^2 - 1 |` over `pairs` of the points in `y`.
@@ -104,150 +108,206 @@ pub(super) fn fitted_rotation(p: [Vec3; 3], first_side: Vec3) -> Matrix3 {
     multiply(&frame(t, n), &back)
 }
 
-/// Fits `sheet`, from `points`, to one target axis per vertex (`targets`, unit), keeping each
-/// wall across its edge, whose direction in the base mesh is `edges[e]` (unit, or zero for
-/// none), and its normal facing `facing[e]` (unit: the edge's normal within S, or zero for
-/// none).
-pub fn fit_axis_field(
-    sheet: &Sheet,
-    points: &[Vec3],
-    targets: &[Vec3],
-    edges: &[Vec3],
-    facing: &[Vec3],
-    options: &AxisFieldOptions,
-    progress: &mut dyn FnMut(&IterationInfo),
-) -> Result<AxisField> {
-    let (np, nt) = (points.len(), sheet.triangles.len());
-    let pairs = sheet.unit_pairs();
-    let mut y: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
-    if max_gap(&y, &pairs) < options.tolerance {
-        // A sheet already fitted (the rest of one whose broken cells were dropped).
-        return Ok(AxisField {
-            points: points.to_vec(),
-            solve: SolveReport::untouched(3 * (np + nt)),
-        });
-    }
-    let sides = reference_sides();
-    let bases = SharedRotations::new(
-        sheet
+/// A fit of `sheet` to one target axis per vertex, keeping each wall across its edge of the
+/// base mesh and, optionally, its normal facing out (see [`AxisFit::new`]). It may stop
+/// short of unit walls and later go on from where it stopped, as if it had not: its guides
+/// as faded, its regularization and rotations as they were.
+pub struct AxisFit<'a> {
+    sheet: &'a Sheet,
+    pairs: Vec<[usize; 2]>,
+    /// The points, then one turn per triangle (zero between steps).
+    y: Vec<f64>,
+    solver: GuidedProjection<'a>,
+    solver_options: SolverOptions,
+    state: SolveState,
+    bases: SharedRotations,
+    ghosts: Ghosts,
+    /// The factor the guides fade by per iteration, and the iterations they faded by before.
+    fade: f64,
+    faded: usize,
+    /// The walls are within the tolerance of the last `run`.
+    met: bool,
+}
+
+impl<'a> AxisFit<'a> {
+    /// The fit of `sheet` from `points`, before its first step, to one target axis per vertex
+    /// (`targets`, unit), keeping each wall across its edge, whose direction in the base mesh
+    /// is `edges[e]` (unit, or zero for none), and its normal facing `facing[e]` (unit: the
+    /// edge's normal within S, or zero for none).
+    pub fn new(
+        sheet: &'a Sheet,
+        points: &[Vec3],
+        targets: &[Vec3],
+        edges: &[Vec3],
+        facing: &[Vec3],
+        options: &AxisFieldOptions,
+    ) -> Result<AxisFit<'a>> {
+        let (np, nt) = (points.len(), sheet.triangles.len());
+        let sides = reference_sides();
+        let bases = SharedRotations::new(
+            sheet
+                .triangles
+                .iter()
+                .map(|t| fitted_rotation(t.map(|p| points[p]), sides[0]))
+                .collect(),
+        );
+        // A node's axis along its target: both sides of its triangle from its first point
+        // orthogonal to it.
+        let axis_rows = sheet
             .triangles
             .iter()
-            .map(|t| fitted_rotation(t.map(|p| points[p]), sides[0]))
-            .collect(),
-    );
-    // A node's axis along its target: both sides of its triangle from its first point
-    // orthogonal to it.
-    let axis_rows = sheet
-        .triangles
-        .iter()
-        .zip(targets)
-        .flat_map(|(&[a, b, c], &t)| [([b, a], t), ([c, a], t)])
-        .collect();
-    let across_rows = sheet
-        .sides
-        .iter()
-        .zip(edges)
-        .filter(|(_, d)| d.norm() > 0.0)
-        .map(|(&s, &d)| (s, d))
-        .collect();
-    let guide = |name, rows, weight| OrthogonalDifference {
-        name,
-        rows,
-        value: 0.0,
-        weight,
-        role: Role::Guide,
-        fade: options.fade,
-    };
-    let mut families: Vec<Box<dyn Constraint>> = vec![
-        Box::new(RigidTriangles {
-            triangles: sheet.triangles.clone(),
-            rotations: np,
-            bases: bases.clone(),
-            sides,
-            weight: options.rigid,
-        }),
-        Box::new(guide("axes_along_targets", axis_rows, options.axes)),
-    ];
-    if options.across > 0.0 {
-        families.push(Box::new(guide(
-            "walls_across_edges",
-            across_rows,
-            options.across,
-        )));
-    }
-    if options.facing > 0.0 {
-        // The orthogonality rows hold a triangle turned over as well as one facing up; these
-        // tell the two apart while the sheet takes its folds.
-        let rows = sheet
+            .zip(targets)
+            .flat_map(|(&[a, b, c], &t)| [([b, a], t), ([c, a], t)])
+            .collect();
+        let across_rows = sheet
             .sides
             .iter()
-            .zip(facing)
+            .zip(edges)
             .filter(|(_, d)| d.norm() > 0.0)
             .map(|(&s, &d)| (s, d))
             .collect();
-        families.push(Box::new(OrthogonalDifference {
-            value: 1.0,
-            ..guide("walls_facing_out", rows, options.facing)
-        }));
-    }
-    let mut positions: Vec<Option<Vec3>> = points.iter().map(|&p| Some(p)).collect();
-    positions.extend(
-        sheet
-            .triangles
-            .iter()
-            .map(|t| Some((points[t[0]] + points[t[1]] + points[t[2]]) / 3.0)),
-    );
-    let rotation_blocks: Vec<usize> = (np..np + nt).collect();
-    let mut solver =
-        GuidedProjection::eliminating(3 * (np + nt), families, Some(&positions), &rotation_blocks)?;
-    y.resize(3 * (np + nt), 0.0);
-    let solver_options = SolverOptions {
-        max_iterations: options.iterations,
-        eps: options.eps,
-        // Done by the walls' lengths, below: the rows of the fit never vanish.
-        tolerance: 0.0,
-        energy_growth: options.energy_growth,
-        cancel: options.cancel.clone(),
-        ..SolverOptions::default()
-    };
-    let ghosts = Ghosts::new(sheet);
-    let mut state = SolveState::new(options.eps);
-    let mut met = false;
-    while !met && state.iterations() < options.iterations {
-        match solver.iterate(&mut y, &mut state, &solver_options)? {
-            Some(info) => progress(&info),
-            None => break,
+        let faded = options.fade.powi(options.faded as i32);
+        let guide = |name, rows, weight: f64| OrthogonalDifference {
+            name,
+            rows,
+            value: 0.0,
+            weight: weight * faded,
+            role: Role::Guide,
+            fade: options.fade,
+        };
+        let mut families: Vec<Box<dyn Constraint>> = vec![
+            Box::new(RigidTriangles {
+                triangles: sheet.triangles.clone(),
+                rotations: np,
+                bases: bases.clone(),
+                sides,
+                weight: options.rigid,
+            }),
+            Box::new(guide("axes_along_targets", axis_rows, options.axes)),
+        ];
+        if options.across > 0.0 {
+            families.push(Box::new(guide(
+                "walls_across_edges",
+                across_rows,
+                options.across,
+            )));
         }
-        // The step's turns into the base rotations: the next linearization is at zero turn.
-        let turns: Vec<Vec3> = (0..nt)
-            .map(|t| Vec3::from_slice(&y[3 * (np + t)..]))
-            .collect();
-        bases.rebase(&turns);
-        y[3 * np..].fill(0.0);
-        // The ghosts crawl where the steps' linearization fails, far from unit walls; near
-        // them the steps converge fast on their own, and settled ghosts only pull against
-        // what is left of the guides.
-        let faded = options.fade.powi(state.iterations() as i32) <= GHOSTS_SETTLE_BELOW;
-        let mut gap = max_gap(&y, &pairs);
-        if faded && gap >= GHOSTS_SETTLE_ABOVE_GAP {
-            let mut p: Vec<Vec3> = y[..3 * np].chunks(3).map(Vec3::from_slice).collect();
-            ghosts.settle(&mut p, &sheet.triangles, sides[0], &bases);
-            for (k, q) in p.iter().enumerate().skip(sheet.cells) {
-                y[3 * k..3 * k + 3].copy_from_slice(&q.to_array());
+        if options.facing > 0.0 {
+            // The orthogonality rows hold a triangle turned over as well as one facing up; these
+            // tell the two apart while the sheet takes its folds.
+            let rows = sheet
+                .sides
+                .iter()
+                .zip(facing)
+                .filter(|(_, d)| d.norm() > 0.0)
+                .map(|(&s, &d)| (s, d))
+                .collect();
+            families.push(Box::new(OrthogonalDifference {
+                value: 1.0,
+                ..guide("walls_facing_out", rows, options.facing)
+            }));
+        }
+        let mut positions: Vec<Option<Vec3>> = points.iter().map(|&p| Some(p)).collect();
+        positions.extend(
+            sheet
+                .triangles
+                .iter()
+                .map(|t| Some((points[t[0]] + points[t[1]] + points[t[2]]) / 3.0)),
+        );
+        let rotation_blocks: Vec<usize> = (np..np + nt).collect();
+        let solver = GuidedProjection::eliminating(
+            3 * (np + nt),
+            families,
+            Some(&positions),
+            &rotation_blocks,
+        )?;
+        let solver_options = SolverOptions {
+            max_iterations: options.iterations,
+            eps: options.eps,
+            // Done by the walls' lengths, below: the rows of the fit never vanish.
+            tolerance: 0.0,
+            energy_growth: options.energy_growth,
+            cancel: options.cancel.clone(),
+            ..SolverOptions::default()
+        };
+        let mut y: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
+        y.resize(3 * (np + nt), 0.0);
+        Ok(AxisFit {
+            sheet,
+            pairs: sheet.unit_pairs(),
+            y,
+            solver,
+            solver_options,
+            state: SolveState::new(options.eps),
+            bases,
+            ghosts: Ghosts::new(sheet),
+            fade: options.fade,
+            faded: options.faded,
+            met: false,
+        })
+    }
+
+    /// Steps until every wall is within `tolerance` of unit length (in `|p_a - p_b|^2 - 1`),
+    /// or the fit's iterations are spent; whether it got there.
+    pub fn run(
+        &mut self,
+        tolerance: f64,
+        progress: &mut dyn FnMut(&IterationInfo),
+    ) -> Result<bool> {
+        let (sheet, np) = (self.sheet, self.sheet.points());
+        let nt = sheet.triangles.len();
+        let sides = reference_sides();
+        let mut gap = max_gap(&self.y, &self.pairs);
+        while gap >= tolerance && self.state.iterations() < self.solver_options.max_iterations {
+            let (y, state) = (&mut self.y, &mut self.state);
+            match self.solver.iterate(y, state, &self.solver_options)? {
+                Some(info) => progress(&info),
+                None => break,
             }
-            gap = max_gap(&y, &pairs);
+            // The step's turns into the base rotations: the next linearization is at zero
+            // turn.
+            let turns: Vec<Vec3> = (0..nt)
+                .map(|t| Vec3::from_slice(&y[3 * (np + t)..]))
+                .collect();
+            self.bases.rebase(&turns);
+            y[3 * np..].fill(0.0);
+            // The ghosts crawl where the steps' linearization fails, far from unit walls; near
+            // them the steps converge fast on their own, and settled ghosts only pull against
+            // what is left of the guides.
+            let steps = self.faded + state.iterations();
+            let faded = self.fade.powi(steps as i32) <= GHOSTS_SETTLE_BELOW;
+            gap = max_gap(y, &self.pairs);
+            if faded && gap >= GHOSTS_SETTLE_ABOVE_GAP {
+                let mut p: Vec<Vec3> = y[..3 * np].chunks(3).map(Vec3::from_slice).collect();
+                self.ghosts
+                    .settle(&mut p, &sheet.triangles, sides[0], &self.bases);
+                for (k, q) in p.iter().enumerate().skip(sheet.cells) {
+                    y[3 * k..3 * k + 3].copy_from_slice(&q.to_array());
+                }
+                gap = max_gap(y, &self.pairs);
+            }
+            if gap < GUIDES_RELEASED_BELOW {
+                state.release_guides();
+            }
         }
-        met = gap < options.tolerance;
-        if gap < GUIDES_RELEASED_BELOW {
-            state.release_guides();
-        }
+        self.met = gap < tolerance;
+        Ok(self.met)
     }
-    let mut solve = solver.report(&y, state, &solver_options);
-    solve.converged = met;
-    Ok(AxisField {
-        points: y[..3 * np].chunks(3).map(Vec3::from_slice).collect(),
-        solve,
-    })
+
+    /// The sheet's points as they stand.
+    pub fn points(&self) -> Vec<Vec3> {
+        let np = self.sheet.points();
+        self.y[..3 * np].chunks(3).map(Vec3::from_slice).collect()
+    }
+
+    /// The report of every step taken; converged where the last `run` got there.
+    pub fn finish(mut self) -> SolveReport {
+        let mut solve = self
+            .solver
+            .report(&self.y, self.state, &self.solver_options);
+        solve.converged = self.met;
+        solve
+    }
 }
 
 #[cfg(test)]
@@ -256,40 +316,48 @@ mod tests {
     use crate::generate::hex_disk;
     use crate::mesh::validate_base_mesh;
 
-    /// A sheet already of unit walls (the rest of a fitted one) is taken as it is: no
-    /// iteration, nothing factorized. One pulled out of shape is fitted to unit walls again.
+    /// A fit stopped short of unit walls and taken on from there ends where one that never
+    /// stopped ends, in as many steps; a sheet of unit walls takes none.
     #[test]
-    fn a_fitted_sheet_is_taken_as_it_is() {
-        let mesh = hex_disk(3.0);
+    fn a_fit_goes_on_from_where_it_stopped() {
+        let mesh = hex_disk(4.0);
         let conn = validate_base_mesh(&mesh).unwrap();
         let sheet = Sheet::new(&mesh, &conn).unwrap();
-        let up = Vec3::new(0.0, 0.0, 1.0);
-        let points = sheet.initial_points(&mesh, &conn, |_| up);
-        let targets = vec![up; mesh.vertices.len()];
+        // A saddle's normals: the sheet must fold to follow them.
+        let normal = |p: Vec3| Vec3::new(-p.x, p.y, 2.0).normalized();
+        let targets: Vec<Vec3> = mesh.vertices.iter().map(|&p| normal(p)).collect();
+        let points = sheet.initial_points(&mesh, &conn, normal);
         let none = vec![Vec3::ZERO; conn.num_edges()];
-        let fit = |points: &[Vec3]| {
-            let options = AxisFieldOptions::default();
-            fit_axis_field(
-                &sheet,
-                points,
-                &targets,
-                &none,
-                &none,
-                &options,
-                &mut |_| {},
-            )
-            .unwrap()
+        let options = AxisFieldOptions::default();
+        let to_unit = options.tolerance;
+        let new = |points: &[Vec3]| {
+            AxisFit::new(&sheet, points, &targets, &none, &none, &options).unwrap()
         };
-        let same = fit(&points);
-        assert_eq!(same.points, points);
-        assert_eq!((same.solve.iterations, same.solve.factorizations), (0, 0));
-        assert!(same.solve.converged);
 
-        let stretched: Vec<Vec3> = points.iter().map(|&p| p * 1.05).collect();
-        let again = fit(&stretched);
-        assert!(again.solve.iterations > 0 && again.solve.converged);
-        let pairs = sheet.unit_pairs();
-        let y: Vec<f64> = again.points.iter().flat_map(|p| p.to_array()).collect();
-        assert!(max_gap(&y, &pairs) < AxisFieldOptions::default().tolerance);
+        let mut straight = new(&points);
+        assert!(straight.run(to_unit, &mut |_| {}).unwrap());
+        let straight_points = straight.points();
+        let straight = straight.finish();
+
+        let mut stopping = new(&points);
+        assert!(stopping.run(1e-2, &mut |_| {}).unwrap());
+        let short = unit_gap(&sheet, &stopping.points());
+        assert!((to_unit..1e-2).contains(&short), "stopped at {short}");
+        assert!(stopping.run(to_unit, &mut |_| {}).unwrap());
+        let stopped_points = stopping.points();
+        let stopped = stopping.finish();
+
+        assert!(straight.iterations > 3 && straight.converged);
+        assert_eq!(stopped.iterations, straight.iterations);
+        assert!(stopped.converged);
+        for (a, b) in stopped_points.iter().zip(&straight_points) {
+            assert!((*a - *b).norm() < 1e-12, "{a:?} against {b:?}");
+        }
+        assert!(unit_gap(&sheet, &stopped_points) < to_unit);
+
+        let mut fitted = new(&stopped_points);
+        assert!(fitted.run(to_unit, &mut |_| {}).unwrap());
+        let none_taken = fitted.finish();
+        assert_eq!((none_taken.iterations, none_taken.factorizations), (0, 0));
     }
 }

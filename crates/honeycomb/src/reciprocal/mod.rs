@@ -10,7 +10,7 @@
 //! virtual wall between its two ghosts, at unit length when its walls meet at 120 degrees.
 //!
 //! So the node axes can be designed first, as a folded sheet whose normals fit S's normals
-//! ([`fit_axis_field`]), and the vertices placed afterwards on the walls that sheet fixes
+//! ([`AxisFit`]), and the vertices placed afterwards on the walls that sheet fixes
 //! ([`place`]), where walls are planar and angles exact by construction. S's normals are
 //! the normals of a folded sheet only where S is developable (the paper's Property 3): on a
 //! doubly curved S the fit is a compromise, which the sheet's folds make.
@@ -23,9 +23,9 @@ mod sheet;
 mod targets;
 mod trim;
 
-pub use across::{walls_across, Across, AcrossOptions, Stage, Start};
-pub use axis_field::{fit_axis_field, AxisFieldOptions};
+pub use across::{walls_across, Across, AcrossOptions, Stage, Start, PROVISIONAL_OMEGA_DEG};
+pub use axis_field::{unit_gap, AxisFieldOptions, AxisFit};
 pub use placement::{place, FittedSheet, PlacementOptions};
 pub use sheet::Sheet;
 pub use targets::{AxisTargets, Turn, SHADING_TURNS};
-pub use trim::{trim_drawn_out, trim_overhang, DRAWN_OUT, ON_S};
+pub use trim::{edge_cv_without, trim_drawn_out, trim_overhang, DRAWN_OUT, ON_S};

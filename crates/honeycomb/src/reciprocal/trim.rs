@@ -45,6 +45,24 @@ fn without_trimmed(across: Across, trimmed: &[usize], surface: &Surface) -> Acro
     }
 }
 
+/// The edge-length cv of `h` without the cells `gone` (sorted) and those [`trim_overhang`]
+/// would trim (at most `max_share` of the cells), `m` its measures.
+pub fn edge_cv_without(
+    h: &Honeycomb,
+    conn: &Connectivity,
+    m: &Measures,
+    gone: &[usize],
+    max_share: f64,
+) -> f64 {
+    let trimmed = overhanging_cells(h, conn, m, max_share);
+    let kept = |f: &usize| trimmed.binary_search(f).is_err() && gone.binary_search(f).is_err();
+    let lengths: Vec<f64> = (conn.edges.iter().zip(&conn.edge_faces))
+        .filter(|(_, faces)| faces.iter().flatten().any(kept))
+        .map(|(&[a, b], _)| (h.base.vertices[a] - h.base.vertices[b]).norm())
+        .collect();
+    edge_length_cv(&lengths)
+}
+
 /// The boundary cells of `h` that hold a vertex off S (farther than [`ON_S`] by `m`), with
 /// the few cells their loss would cut off (sorted): all of them, when they are at most
 /// `max_share` of the cells, can go without cutting a lobe off the rest and take every vertex
