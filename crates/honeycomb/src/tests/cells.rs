@@ -68,7 +68,10 @@ fn even_cells_are_left_alone() {
     assert!(plain.measures.edge_length_cv < 0.12);
     assert!(!asked.report.notes.iter().any(|n| n.contains("evened")));
     let (fitted, spent) = (plain.report.iterations_total, asked.report.iterations_total);
-    assert!((fitted + 1..=fitted + 4).contains(&spent), "{fitted} -> {spent}");
+    assert!(
+        (fitted + 1..=fitted + 4).contains(&spent),
+        "{fitted} -> {spent}"
+    );
     assert_eq!(asked.honeycomb.base.faces, plain.honeycomb.base.faces);
     let (m, p) = (measure(&asked.honeycomb, &surface), &plain.measures);
     assert!(m.omega_max_deg < 1e-5 && m.delta_max < 1e-9, "{m:?}");
@@ -140,7 +143,10 @@ fn the_evening_starts_from_a_provisional_fit() {
     assert!(!finished.provisional);
     assert_eq!(finished.field_iterations, exact.field_iterations);
     let (fitted, spent) = (exact.solve.iterations, finished.solve.iterations);
-    assert!((fitted + 1..=fitted + 4).contains(&spent), "{fitted} -> {spent}");
+    assert!(
+        (fitted + 1..=fitted + 4).contains(&spent),
+        "{fitted} -> {spent}"
+    );
     assert!(finished.measures.omega_max_deg < 1e-5);
     assert!(finished.measures.edge_length_cv < UNEVEN_CELLS_CV);
 }
