@@ -225,8 +225,9 @@ pub fn walls_across(
         } else {
             DROPS_EVEN_BY
         };
-        let cv = edge_cv_without(&honeycomb, &conn, &measures, &broken, share);
-        let even = |uneven| cv < uneven + margin;
+        let even = |uneven| {
+            edge_cv_without(&honeycomb, &conn, &measures, &broken, share) < uneven + margin
+        };
         let last = |broken: &[usize]| {
             broken.is_empty()
                 || drops == options.max_drops
@@ -266,13 +267,13 @@ pub fn walls_across(
             field_converged = exact.run(to_unit, &mut |i| progress(Stage::AxisField, i))?;
             points = exact.points();
             fit = Some(exact);
-            let stood = placed.vertices.clone();
+            solves.then(placed.solve);
+            let stood = placed.vertices;
             let from = if broke {
                 placed_before.as_deref()
             } else {
                 Some(&stood[..])
             };
-            solves.then(placed.solve);
             (placed, honeycomb, measures) = placed_on(&points, from, &placement, progress)?;
             broken = broken_boundary_cells(&honeycomb, &conn, &measures);
         }

@@ -159,13 +159,13 @@ impl<'a> AxisFit<'a> {
             .zip(targets)
             .flat_map(|(&[a, b, c], &t)| [([b, a], t), ([c, a], t)])
             .collect();
-        let across_rows = sheet
-            .sides
-            .iter()
-            .zip(edges)
-            .filter(|(_, d)| d.norm() > 0.0)
-            .map(|(&s, &d)| (s, d))
-            .collect();
+        // One row per wall with a direction given (zero: none).
+        let side_rows = |directions: &[Vec3]| {
+            (sheet.sides.iter().zip(directions))
+                .filter(|(_, d)| d.norm() > 0.0)
+                .map(|(&s, &d)| (s, d))
+                .collect()
+        };
         let faded = options.fade.powi(options.faded as i32);
         let guide = |name, rows, weight: f64| OrthogonalDifference {
             name,
@@ -188,23 +188,16 @@ impl<'a> AxisFit<'a> {
         if options.across > 0.0 {
             families.push(Box::new(guide(
                 "walls_across_edges",
-                across_rows,
+                side_rows(edges),
                 options.across,
             )));
         }
         if options.facing > 0.0 {
             // The orthogonality rows hold a triangle turned over as well as one facing up; these
             // tell the two apart while the sheet takes its folds.
-            let rows = sheet
-                .sides
-                .iter()
-                .zip(facing)
-                .filter(|(_, d)| d.norm() > 0.0)
-                .map(|(&s, &d)| (s, d))
-                .collect();
             families.push(Box::new(OrthogonalDifference {
                 value: 1.0,
-                ..guide("walls_facing_out", rows, options.facing)
+                ..guide("walls_facing_out", side_rows(facing), options.facing)
             }));
         }
         let mut positions: Vec<Option<Vec3>> = points.iter().map(|&p| Some(p)).collect();
