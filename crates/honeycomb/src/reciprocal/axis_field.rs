@@ -72,6 +72,12 @@ const GHOSTS_SETTLE_ABOVE_GAP: f64 = 1e-2;
 /// Once every wall is this close to unit length the guides are let go: the sheet's fold is
 /// set, and the last steps only make its walls unit.
 const GUIDES_RELEASED_BELOW: f64 = 1e-3;
+/// A fit still short of unit walls this many steps after its guides were let go is crawling
+/// along the soft folds of a nearly flat sheet, where halving a step that raised the energy
+/// only holds the regularization up; from then on a step is taken whole unless it multiplies
+/// the energy by more than this, as in the guided projection.
+const CRAWLING_AFTER: usize = 4;
+const CRAWLING_ENERGY_GROWTH: f64 = 100.0;
 
 /// How far `points` of `sheet` are from unit walls: the largest `| |p_a - p_b|^2 - 1 |`.
 pub fn unit_gap(sheet: &Sheet, points: &[Vec3]) -> f64 {
@@ -125,6 +131,8 @@ pub struct AxisFit<'a> {
     /// The factor the guides fade by per iteration, and the iterations they faded by before.
     fade: f64,
     faded: usize,
+    /// Steps taken since the guides were let go.
+    released_steps: usize,
     /// The walls are within the tolerance of the last `run`.
     met: bool,
 }
@@ -236,6 +244,7 @@ impl<'a> AxisFit<'a> {
             ghosts: Ghosts::new(sheet),
             fade: options.fade,
             faded: options.faded,
+            released_steps: 0,
             met: false,
         })
     }
@@ -281,6 +290,10 @@ impl<'a> AxisFit<'a> {
             }
             if gap < GUIDES_RELEASED_BELOW {
                 state.release_guides();
+                self.released_steps += 1;
+                if self.released_steps == CRAWLING_AFTER {
+                    self.solver_options.energy_growth = CRAWLING_ENERGY_GROWTH;
+                }
             }
         }
         self.met = gap < tolerance;
