@@ -130,13 +130,12 @@ fn a_shallow_dome_is_made_in_forty_iterations() {
     let surface = square_height_field(10.0, 60, |x, y| (2500.0 - x * x - y * y).sqrt() - 50.0);
     let made = run(&surface, 1500);
     assert_clean(&made, "shallow dome", 1500);
-    let (lean, parallel) = (
-        made.measures.axis_normal_deg,
-        made.measures.parallel_baseline_deg,
-    );
+    let m = &made.measures;
     assert!(
-        lean.mean <= 0.5 * parallel.mean,
-        "{lean:?} against {parallel:?}"
+        m.axis_normal_deg.mean <= 0.5 * m.parallel_baseline_deg.mean,
+        "{:?} against {:?}",
+        m.axis_normal_deg,
+        m.parallel_baseline_deg
     );
     assert!(
         made.report.iterations_total <= 40,
