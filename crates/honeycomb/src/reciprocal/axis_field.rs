@@ -131,7 +131,7 @@ pub struct AxisFit<'a> {
     /// The factor the guides fade by per iteration, and the iterations they faded by before.
     fade: f64,
     faded: usize,
-    /// Steps taken since the guides were let go.
+    /// Steps that ended with every wall within the gap at which the guides are let go.
     released_steps: usize,
     /// The walls are within the tolerance of the last `run`.
     met: bool,
