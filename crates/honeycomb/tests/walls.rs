@@ -3,7 +3,7 @@
 //! mostly hexagonal cells whose node axes follow S's normals far better than parallel axes;
 //! surfaces no lattice of one cell size suits are remeshed or refused at once.
 
-use honeycomb::generate::{cooling_tower, design_surface, tube, Shape};
+use honeycomb::generate::{cooling_tower, design_surface, square_height_field, tube, Shape};
 use honeycomb::geometry::Vec3;
 use honeycomb::init::{init, CellSize, Flattener, InitOptions, Method};
 use honeycomb::mesh::{Connectivity, PolyMesh};
@@ -142,29 +142,6 @@ fn a_shallow_dome_is_made_in_forty_iterations() {
         "{}",
         made.report.iterations_total
     );
-}
-
-/// `z = height(x, y)` over the square `[-half, half]^2`, `n` by `n` squares of two triangles.
-fn square_height_field(half: f64, n: usize, height: impl Fn(f64, f64) -> f64) -> PolyMesh {
-    let at = |k: usize| -half + 2.0 * half * k as f64 / n as f64;
-    let vertices = (0..=n)
-        .flat_map(|j| (0..=n).map(move |i| (at(i), at(j))))
-        .map(|(x, y)| Vec3::new(x, y, height(x, y)))
-        .collect();
-    let index = |i: usize, j: usize| j * (n + 1) + i;
-    let faces = (0..n)
-        .flat_map(|j| (0..n).map(move |i| (i, j)))
-        .flat_map(|(i, j)| {
-            let (a, b, c, d) = (
-                index(i, j),
-                index(i + 1, j),
-                index(i + 1, j + 1),
-                index(i, j + 1),
-            );
-            [vec![a, b, c], vec![a, c, d]]
-        })
-        .collect();
-    PolyMesh::new(vertices, faces)
 }
 
 /// Uniform walls are the plan-view honeycomb: every axis along S's mean normal.

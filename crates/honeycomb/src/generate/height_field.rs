@@ -105,16 +105,7 @@ impl HeightField {
         if self.shape == Shape::Ring {
             return self.triangulate_ring(n);
         }
-        let half = 1.2 * self.d;
-        let step = 2.0 * half / n as f64;
-        let mut vertices = Vec::with_capacity((n + 1) * (n + 1));
-        for j in 0..=n {
-            for i in 0..=n {
-                let (x, y) = (-half + step * i as f64, -half + step * j as f64);
-                vertices.push(Vec3::new(x, y, self.height(x, y)));
-            }
-        }
-        PolyMesh::new(vertices, super::split_quads(n, n, n + 1))
+        square_height_field(1.2 * self.d, n, |x, y| self.height(x, y))
     }
 
     /// The ring over the annulus from its hole to 1.2 d, in `n` / 3 rings of 2 `n` triangle
@@ -142,4 +133,18 @@ impl HeightField {
         }
         PolyMesh::new(vertices, faces)
     }
+}
+
+/// `z = height(x, y)` over the square `[-half, half]^2`: `n` x `n` squares of two triangles,
+/// counter-clockwise seen from +z.
+pub fn square_height_field(half: f64, n: usize, height: impl Fn(f64, f64) -> f64) -> PolyMesh {
+    let step = 2.0 * half / n as f64;
+    let mut vertices = Vec::with_capacity((n + 1) * (n + 1));
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (-half + step * i as f64, -half + step * j as f64);
+            vertices.push(Vec3::new(x, y, height(x, y)));
+        }
+    }
+    PolyMesh::new(vertices, super::split_quads(n, n, n + 1))
 }

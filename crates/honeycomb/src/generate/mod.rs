@@ -5,7 +5,7 @@ mod hex_patch;
 mod roof;
 mod tower;
 
-pub use height_field::{HeightField, Shape, RING_SLOPE};
+pub use height_field::{square_height_field, HeightField, Shape, RING_SLOPE};
 pub use hex_patch::{hex_disk, radius_for_vertices};
 pub use roof::{roof, ROOF_AMPLITUDE};
 pub use tower::{cooling_tower, tower_radius, tube};
