@@ -207,6 +207,9 @@ pub struct QuadCover {
     pub zigzag_runs: Vec<ZigzagRun>,
     /// Every diagonal continued at each end by the edge beyond it.
     pub straight_runs: Vec<StraightRun>,
+    /// The hexagons split along their own flattest diagonal where the pattern's is another
+    /// (see [`QuadCover::resplit`]), in face order; always empty for `Flattest`.
+    pub off_pattern: Vec<usize>,
     unsplit_loops: Vec<Vec<usize>>,
 }
 
@@ -231,14 +234,30 @@ impl QuadCover {
             (_, None) => flattest_class(mesh, conn, &raw, pattern),
         };
         let classes = raw.renumbered(conn, &straight);
-        QuadCover::with_classes(mesh, conn, pattern, classes)
+        QuadCover::with_classes(mesh, conn, pattern, classes, &[])
     }
 
+    /// The same cover with the hexagons `cells` (besides those already off it) split along
+    /// whichever of their diagonals leaves their quads flattest on `mesh`, the pattern's
+    /// polylines broken there: where the pattern's quads stay far from planar, a few cells off
+    /// it may let the rest be capped flat. A cell whose flattest diagonal is the pattern's
+    /// stays on it.
+    pub fn resplit(&self, mesh: &PolyMesh, conn: &Connectivity, cells: &[usize]) -> QuadCover {
+        let mut off = self.off_pattern.clone();
+        off.extend(cells.iter().filter(|&&f| self.cell_quads[f].is_some()));
+        off.sort_unstable();
+        off.dedup();
+        QuadCover::with_classes(mesh, conn, self.pattern, self.classes.clone(), &off)
+    }
+
+    /// The cover with these classes; the hexagons `off` (sorted) split along their own
+    /// flattest diagonal whatever the pattern.
     fn with_classes(
         mesh: &PolyMesh,
         conn: &Connectivity,
         pattern: QuadPattern,
         classes: EdgeClasses,
+        off: &[usize],
     ) -> QuadCover {
         let nf = mesh.faces.len();
         let parity = match pattern {
@@ -254,6 +273,7 @@ impl QuadCover {
             classes,
             zigzag_runs: Vec::new(),
             straight_runs: Vec::new(),
+            off_pattern: Vec::new(),
             unsplit_loops: Vec::new(),
         };
         for (f, face) in mesh.faces.iter().enumerate() {
@@ -267,6 +287,13 @@ impl QuadCover {
                 QuadPattern::Alternating => 1 + parity[f],
                 QuadPattern::Flattest => flattest_diagonal(mesh, face, offset),
             };
+            let own = (off.binary_search(&f).is_ok())
+                .then(|| flattest_diagonal(mesh, face, offset))
+                .filter(|&own| own != class);
+            if own.is_some() {
+                cover.off_pattern.push(f);
+            }
+            let class = own.unwrap_or(class);
             let halves = halves(face, class, offset);
             let q = cover.quads.len();
             cover.quads.extend(halves);
@@ -354,7 +381,8 @@ fn flattest_class(
     let mut defect = vec![[0.0; 3]; classes.num_patches];
     for c in 0..3u8 {
         let zero = vec![c; classes.num_patches];
-        let trial = QuadCover::with_classes(mesh, conn, pattern, classes.renumbered(conn, &zero));
+        let trial =
+            QuadCover::with_classes(mesh, conn, pattern, classes.renumbered(conn, &zero), &[]);
         for (f, quads) in trial.cell_quads.iter().enumerate() {
             let (Some(p), Some(qs)) = (classes.patch[f], quads) else {
                 continue;
@@ -578,6 +606,51 @@ mod tests {
             classes.insert(c.classes.cell_edge_class(f, k + 1));
         }
         assert_eq!(classes.len(), 3, "{classes:?}");
+    }
+
+    /// A zigzag cover with some cells taken off the pattern: those cells take the flattest
+    /// cover's diagonal and are named where it is not the zigzag's, every other cell keeps the
+    /// zigzag's, and taking more cells off later keeps the first ones off.
+    #[test]
+    fn cells_taken_off_the_pattern_take_their_flattest_diagonal() {
+        let mut mesh = hex_disk(6.0);
+        for p in &mut mesh.vertices {
+            p.z = (p.x.sin() * p.y.cos()) / 5.0;
+        }
+        let conn = Connectivity::build(&mesh).unwrap();
+        let zigzag = QuadCover::new(&mesh, &conn, QuadPattern::Zigzag, None);
+        let flattest = QuadCover::new(&mesh, &conn, QuadPattern::Flattest, None);
+        assert!(zigzag.off_pattern.is_empty() && flattest.off_pattern.is_empty());
+        let sorted = |d: Option<[usize; 2]>| {
+            let mut d = d.unwrap();
+            d.sort();
+            d
+        };
+        let nf = mesh.faces.len();
+        let first: Vec<usize> = (0..nf).step_by(3).collect();
+        let once = zigzag.resplit(&mesh, &conn, &first);
+        let twice = once.resplit(&mesh, &conn, &[1, 4]);
+        for (cover, off) in [
+            (&once, first.clone()),
+            (&twice, [first, vec![1, 4]].concat()),
+        ] {
+            assert_eq!(cover.quads.len(), zigzag.quads.len());
+            let mut named = Vec::new();
+            for f in 0..nf {
+                let (own, pattern) = (sorted(flattest.diagonals[f]), sorted(zigzag.diagonals[f]));
+                let d = sorted(cover.diagonals[f]);
+                if off.contains(&f) {
+                    assert_eq!(d, own, "cell {f}");
+                    if own != pattern {
+                        named.push(f);
+                    }
+                } else {
+                    assert_eq!(d, pattern, "cell {f}");
+                }
+            }
+            assert!(!named.is_empty());
+            assert_eq!(cover.off_pattern, named);
+        }
     }
 
     /// Corannulene: a pentagon ringed by five hexagons, a lattice defect around which the
