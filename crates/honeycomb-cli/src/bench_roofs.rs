@@ -115,6 +115,7 @@ fn variant(name: &str) -> Variant {
             w_fair_zig: None,
             w_fair_str: None,
             quads_reshape,
+            quads_whole_pattern: false,
         },
     }
 }

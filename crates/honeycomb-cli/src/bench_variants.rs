@@ -37,6 +37,7 @@ fn cases() -> Vec<Case> {
                 w_fair_zig: None,
                 w_fair_str: None,
                 quads_reshape: None,
+                quads_whole_pattern: false,
             },
             ..all_iterations(10)
         },

@@ -131,6 +131,12 @@ pub struct SolveArgs {
     /// shape].
     #[arg(long, value_name = "CV", allow_negative_numbers = true)]
     pub quads_reshape: Option<f64>,
+    /// With --quads zigzag or alternating: split every hexagon as the pattern says. By default,
+    /// where the pattern's quads stay short of the floors (worst 0.01, mean 0.004), the cells
+    /// whose quads stay least planar take their own flattest diagonal instead, the pattern's
+    /// polylines broken there; report.json's `capping` counts them (`cells_off_pattern`).
+    #[arg(long)]
+    pub quads_whole_pattern: bool,
     /// Guide the node axes towards the surface normals in the first iterations, so that walls
     /// stand across the surface (e.g. 3, with --w-fair 0); fades by 0.3 per iteration.
     #[arg(long, default_value_t = Options::default().w_guide, allow_negative_numbers = true)]
@@ -230,6 +236,12 @@ impl SolveArgs {
                 quads,
             ),
             (
+                self.quads_whole_pattern,
+                "--quads-whole-pattern",
+                "--quads",
+                quads,
+            ),
+            (
                 self.sun_path.is_some(),
                 "--sun-path",
                 "--light",
@@ -273,6 +285,7 @@ impl SolveArgs {
                 w_fair_zig: self.w_fair_zig,
                 w_fair_str: self.w_fair_str,
                 quads_reshape: self.quads_reshape,
+                quads_whole_pattern: self.quads_whole_pattern,
             }
         } else if let Some(light) = self.light {
             Variant::Shading {

@@ -56,6 +56,10 @@ pub struct Args {
         allow_negative_numbers = true
     )]
     pub quads_reshape: Option<f64>,
+    /// With --quads: every hexagon split as the pattern says, as `pipeline
+    /// --quads-whole-pattern`.
+    #[arg(long, requires = "quads")]
+    pub quads_whole_pattern: bool,
     /// With a design surface: parallel meshes M, M' on the honeycomb's walls, as `pipeline
     /// --parallel`; the page shows how parallel they stay after every edit.
     #[arg(long)]
@@ -259,6 +263,7 @@ fn variant(args: &Args, surface_input: bool) -> Result<Variant> {
             w_fair_zig: None,
             w_fair_str: None,
             quads_reshape: args.quads_reshape,
+            quads_whole_pattern: args.quads_whole_pattern,
         }
     } else if args.parallel {
         Variant::Parallel {

@@ -522,6 +522,11 @@ fn a_weight_for_a_variant_not_asked_for() {
         let need = format!("{flag} needs {needs}");
         optimize_with_fails(&dir, &[flag, "0.5"], &[&need]);
     }
+    optimize_with_fails(
+        &dir,
+        &["--quads-whole-pattern"],
+        &["--quads-whole-pattern needs --quads"],
+    );
 }
 
 #[test]

@@ -74,6 +74,45 @@ fn quads_are_written_planar_on_the_optimized_vertices() {
     assert!(number(&report, "omega_max_deg") < 0.1);
 }
 
+/// `pipeline --quads zigzag` on the built-in wave (its surface as `demo` writes it), where the
+/// zigzag whole stays short of the quad floors: report.json's `capping` counts the cells taken
+/// off the pattern and gives the pattern whole's quads; `--quads-whole-pattern` takes none
+/// off and the written quads stay short.
+#[test]
+fn a_pattern_broken_for_flat_quads_is_reported() {
+    let tmp = TempDir::new("pattern_broken");
+    demo(&tmp.join("wave"), &["--shape", "wave"]);
+    let surface = tmp.join("wave").join("surface.obj");
+    let capped = |extra: &[&str]| {
+        let dir = tmp.join(&format!("capped{}", extra.len()));
+        let mut args = vec!["pipeline", surface.to_str().unwrap(), "--cells", "750"];
+        args.extend(["--quads", "zigzag", "-q", "-o", dir.to_str().unwrap()]);
+        args.extend(extra.iter().copied());
+        let out = run(&args);
+        assert!(out.status.success(), "{}", stderr(&out));
+        read_json(&dir, "report.json")
+    };
+    let floors = |r: &serde_json::Value| {
+        number(r, "delta_face_max") <= 0.01 && number(r, "delta_face_avg") <= 0.004
+    };
+    let broken = capped(&[]);
+    let capping = &broken["capping"];
+    let off = number(capping, "cells_off_pattern");
+    assert!(
+        off >= 1.0 && 5.0 * off <= number(&broken, "quads") / 2.0,
+        "{capping}"
+    );
+    assert!(floors(&broken), "{broken}");
+    assert!(
+        number(&capping["whole_pattern"], "delta_face_max") > 0.01,
+        "{capping}"
+    );
+    let whole = capped(&["--quads-whole-pattern"]);
+    assert_eq!(number(&whole["capping"], "cells_off_pattern"), 0.0);
+    assert!(whole["capping"].get("whole_pattern").is_none(), "{whole}");
+    assert!(!floors(&whole), "{whole}");
+}
+
 #[test]
 fn prescribed_axes_are_followed() {
     let tmp = TempDir::new("axes");
@@ -338,6 +377,7 @@ fn the_help_states_the_library_defaults_of_the_variant_weights() {
         w_fair_zig: None,
         w_fair_str: None,
         quads_reshape: None,
+        quads_whole_pattern: false,
     });
     let axes = weights(Variant::Axes {
         axes: Vec::new(),

@@ -725,6 +725,7 @@ fn a_design_surface_keeps_its_variant_in_view() {
             w_fair_zig: None,
             w_fair_str: None,
             quads_reshape: None,
+            quads_whole_pattern: false,
         },
         200,
     );

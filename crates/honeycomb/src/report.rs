@@ -114,6 +114,13 @@ pub struct Capping {
     /// The edge cv the cells were allowed to re-shape to (`--quads-reshape`); `None`: each
     /// vertex was held in its place along S.
     pub reshape: Option<f64>,
+    /// Hexagons split along their own flattest diagonal instead of the pattern's (0 for a
+    /// `flattest` cover, or one that met the floors whole).
+    pub cells_off_pattern: usize,
+    /// Where the pattern whole stayed short of the floors: its quads' planarity then, the
+    /// other side of the trade (`None`: it met them, or it was kept whole on request).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub whole_pattern: Option<FaceMeasures>,
 }
 
 impl Capping {
@@ -220,6 +227,8 @@ impl Report {
                 along_s_max,
                 edge_length_cv_before,
                 reshape,
+                cells_off_pattern: cover.off_pattern.len(),
+                whole_pattern: capped.quads_whole_pattern.clone(),
             }),
         });
     }

@@ -12,6 +12,7 @@ use crate::optimize::{
     Weights,
 };
 use crate::solve::{jacobian_fd_error, Constraint};
+use crate::structure::QuadCover;
 use crate::surface::Surface;
 
 /// A deterministic pseudo-random perturbation in [-1, 1].
@@ -179,7 +180,9 @@ fn capping_families_match_finite_differences() {
             closeness: 0.3,
             sliding: true,
         };
-        let mut problem = CappingProblem::build(&mesh, &conn, walls, &surface, &options, sliding);
+        let cover = QuadCover::new(&mesh, &conn, pattern, None);
+        let mut problem =
+            CappingProblem::build(&mesh, &conn, walls, (&surface, cover), &options, sliding);
         let cover = &problem.cover;
         assert_eq!(cover.quads.len(), 2 * mesh.faces.len());
         // The vertices, one unit normal per quad on S's side, one dummy per edge.

@@ -128,6 +128,10 @@ pub enum Variant {
         /// The edge-length cv the cells may re-shape to for flatter quads (default: none, the
         /// cells keep their shape).
         quads_reshape: Option<f64>,
+        /// Every hexagon split as the pattern says (default false: where the pattern's quads
+        /// stay short of the floors, the least planar cells take their own diagonal).
+        #[serde(default)]
+        quads_whole_pattern: bool,
     },
     /// Prescribed node axes (Fig. 10): one direction per base-mesh vertex (zero: free).
     Axes {
@@ -213,6 +217,7 @@ impl Variant {
             w_fair_zig,
             w_fair_str,
             quads_reshape,
+            quads_whole_pattern,
         } = *self
         else {
             return None;
@@ -225,6 +230,7 @@ impl Variant {
             w_fair_zigzag: w_fair_zig.unwrap_or(defaults.w_fair_zigzag),
             w_fair_straight: w_fair_str.unwrap_or(defaults.w_fair_straight),
             reshape: quads_reshape,
+            whole_pattern: quads_whole_pattern,
         })
     }
 

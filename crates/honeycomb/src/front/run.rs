@@ -253,8 +253,10 @@ fn cap_with_quads(
     let Some((optimized, report)) = spare.filter(|_| worst_quad(&flattest.1) > FLAT_QUAD) else {
         return Ok(flattest);
     };
+    // The zigzag whole: cells off it would take their own diagonals, as the flattest cover's.
     let zigzag = QuadOptions {
         pattern: QuadPattern::Zigzag,
+        whole_pattern: true,
         ..quads.clone()
     };
     let mut pattern = cap_with_cover(optimized, report, surface, &zigzag, options, progress)?;
@@ -334,9 +336,27 @@ fn cap_with_cover(
         let trade = capping.trade(&q.faces, m.closeness_max, m.edge_length_cv);
         report.notes.push(trade);
     }
+    report.notes.extend(cells_off_pattern(&report));
     report.notes.extend(flatter_pattern(&report));
     report.notes.extend(reshaped_cells(&report));
     Ok((capped, report))
+}
+
+/// Where cells were taken off the pattern, how many, and what the pattern whole gave.
+fn cells_off_pattern(report: &Report) -> Option<String> {
+    let q = report.quads.as_ref()?;
+    let capping = q.capping.as_ref()?;
+    let whole = capping.whole_pattern.as_ref()?;
+    Some(format!(
+        "{} quads: {} of {} hexagons split along their own flattest diagonal, where the \
+         pattern's quads stayed least planar (the pattern whole: the worst quad {} and the \
+         mean {} from planar); --quads-whole-pattern keeps every cell on it",
+        q.quad_pattern.label(),
+        capping.cells_off_pattern,
+        q.faces.quads / 2,
+        rounded(whole.delta_face_max, 4),
+        rounded(whole.delta_face_avg, 4),
+    ))
 }
 
 /// Where a cover whose cells kept their shape stays less flat than a glazed one asks, a note

@@ -247,6 +247,9 @@ pub struct Optimized {
     pub quads: Option<PolyMesh>,
     /// With quads: how the cells were split (the quads to measure, the polylines).
     pub quad_cover: Option<crate::structure::QuadCover>,
+    /// With quads whose pattern stayed short of the floors and might be broken: its quads'
+    /// planarity as the pattern whole left them (see `QuadCover::off_pattern`).
+    pub quads_whole_pattern: Option<crate::structure::FaceMeasures>,
     /// The weights the solve used (normalization set; boundary 0 without a design surface).
     pub weights: Weights,
     /// The wall normals' unknowns the solve used (`Auto` decided).
@@ -509,6 +512,7 @@ pub fn optimize(
         parallel: options.parallel.is_some(),
         quads: None,
         quad_cover: None,
+        quads_whole_pattern: None,
         weights,
         wall_normals: options.wall_normals,
     })
@@ -534,6 +538,7 @@ pub fn capped(
     Ok(Optimized {
         quads: Some(capped.cover.mesh(&honeycomb.base.vertices)),
         quad_cover: Some(capped.cover),
+        quads_whole_pattern: capped.whole,
         honeycomb,
         solve: capped.solve,
         normals,

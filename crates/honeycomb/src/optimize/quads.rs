@@ -18,7 +18,8 @@ use crate::solve::{
     Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
 };
 use crate::structure::{
-    edge_length_cv, face_measures, is_convex, meet_quad_floors, Honeycomb, QuadCover,
+    edge_length_cv, face_measures, is_convex, meet_quad_floors, quad_planarity, FaceMeasures,
+    Honeycomb, QuadCover, FLAT_QUAD, FLAT_QUAD_MEAN,
 };
 use crate::surface::Surface;
 
@@ -40,6 +41,10 @@ pub struct QuadOptions {
     /// (within their walls), and the slid capping is kept if it is flatter and its cells stay
     /// this even. `None`: each vertex keeps its place along S, and the cells their shape.
     pub reshape: Option<f64>,
+    /// Every hexagon split as the pattern says. Else, where the pattern's quads stay short of
+    /// the floors, the cells whose quads stay least planar take their own flattest diagonal
+    /// (`QuadCover::off_pattern`), the pattern's polylines broken there.
+    pub whole_pattern: bool,
 }
 
 impl Default for QuadOptions {
@@ -51,6 +56,7 @@ impl Default for QuadOptions {
             w_fair_zigzag: 0.01,
             w_fair_straight: 0.01,
             reshape: None,
+            whole_pattern: false,
         }
     }
 }
@@ -161,6 +167,14 @@ const FIRM_PAST: f64 = 0.09;
 /// How far capping may take a vertex from S, in mean edge lengths.
 const MAX_DISTANCE_FROM_S: f64 = 0.1;
 
+/// Where a pattern's quads stay short of the floors, the cappings with cells taken off it aim
+/// at these shares of the floors in turn: the floors themselves, then lower, where a capping
+/// fell short of what its choice of cells guessed.
+const OFF_PATTERN_AIMS: [f64; 3] = [1.0, 0.85, 0.7];
+/// At most this share of a pattern's hexagons may leave it: past it, the cover is no longer
+/// the pattern asked for.
+const MAX_OFF_PATTERN: f64 = 0.2;
+
 /// A step that changes the quads' largest and mean planarity by less than this has left them
 /// as they are to the digits that delta_face is read to: the capping has settled.
 const SETTLED_PLANARITY: f64 = 1e-5;
@@ -176,6 +190,9 @@ pub struct Capped {
     pub vertices: Vec<Vec3>,
     pub cover: QuadCover,
     pub solve: SolveReport,
+    /// Where cells were taken off the pattern (`cover.off_pattern`): the quads' planarity as
+    /// the pattern whole left them.
+    pub whole: Option<FaceMeasures>,
 }
 
 /// Caps every hexagon of `honeycomb` (model units, with its unit wall normals `normals`, one
@@ -205,9 +222,9 @@ pub(crate) fn cap(
         c.vertices = onto_kept_walls(&c.vertices, &conn.edges, normals);
         c
     };
+    let cover = QuadCover::new(&honeycomb.base, conn, options.pattern, options.direction);
     let held_tries = |solver: &SolverOptions, progress: &mut dyn FnMut(&IterationInfo)| {
-        let tries = (&HELD_TRIES[..], EVEN_CELLS);
-        cap_trying(tries, walls, surface, options, solver, progress)
+        held_with_cells_off(&cover, walls, surface, options, solver, progress)
     };
     let Some(reshape) = options.reshape else {
         return Ok(on_walls(held_tries(solver, progress)?));
@@ -235,9 +252,15 @@ pub(crate) fn cap(
         ..honeycomb.clone()
     };
     let walls = (&held_honeycomb, conn, normals);
+    // Its cover is chosen again on the flatter vertices, with the held cover's cells off the
+    // pattern: a cell's flattest diagonal (and a pattern's straight class) may have changed.
+    let base = &held_honeycomb.base;
+    let cover = QuadCover::new(base, conn, options.pattern, options.direction);
+    let cover = cover.resplit(base, conn, &held.cover.off_pattern);
     let sliding = cap_trying(
         (&[SLIDING_TRY], reshape),
         walls,
+        &cover,
         surface,
         options,
         &sliding_solver,
@@ -246,13 +269,128 @@ pub(crate) fn cap(
     // Not clean, the sliding try leaves the vertices where the held tries did: unless it is
     // flatter, the held quads are kept.
     let flatter = planarity(&sliding).delta_face_max < flat.delta_face_max;
+    let whole = held.whole.clone();
     let (mut kept, other) = if flatter {
         (sliding, held)
     } else {
         (held, sliding)
     };
     kept.solve.iterations += other.solve.iterations;
+    kept.whole = whole;
     Ok(on_walls(kept))
+}
+
+/// The held tries on `cover`. Where the pattern's quads stay short of the floors and the
+/// pattern may be broken, a few hexagons take their own flattest diagonal instead (see
+/// [`cells_to_take_off`]) and the honeycomb is capped again within the same budget, aiming a
+/// little lower each round (`OFF_PATTERN_AIMS`, the cells taken off adding up), until a cover
+/// meets the floors. Only such a cover is kept: a pattern broken and still short of them is
+/// worth less than the pattern whole. The returned cover names the cells it took off.
+fn held_with_cells_off(
+    cover: &QuadCover,
+    walls: (&Honeycomb, &Connectivity, &[Vec3]),
+    surface: &PolyMesh,
+    options: &QuadOptions,
+    solver: &SolverOptions,
+    progress: &mut dyn FnMut(&IterationInfo),
+) -> Result<Capped> {
+    let (honeycomb, conn, _) = walls;
+    let tries = (&HELD_TRIES[..], EVEN_CELLS);
+    let whole = cap_trying(tries, walls, cover, surface, options, solver, progress)?;
+    let mut spent = whole.solve.iterations;
+    let flat = face_measures(&whole.vertices, &whole.cover.quads);
+    let may_break = options.pattern != QuadPattern::Flattest && !options.whole_pattern;
+    if !may_break || flat.meet_floors() {
+        return Ok(whole);
+    }
+    let mut last: Option<Capped> = None;
+    for aim in OFF_PATTERN_AIMS {
+        if spent >= solver.max_iterations {
+            break;
+        }
+        let from = last.as_ref().unwrap_or(&whole);
+        let cells = cells_to_take_off((&from.cover, &from.vertices), &honeycomb.base, conn, aim);
+        let cover = from.cover.resplit(&honeycomb.base, conn, &cells);
+        if cover.off_pattern == from.cover.off_pattern {
+            continue;
+        }
+        let left = SolverOptions {
+            max_iterations: solver.max_iterations - spent,
+            ..solver.clone()
+        };
+        let next = cap_trying(tries, walls, &cover, surface, options, &left, progress)?;
+        spent += next.solve.iterations;
+        let meets = face_measures(&next.vertices, &next.cover.quads).meet_floors();
+        last = Some(next);
+        if meets {
+            break;
+        }
+    }
+    let mut kept = match last {
+        Some(mixed) if face_measures(&mixed.vertices, &mixed.cover.quads).meet_floors() => Capped {
+            whole: Some(flat),
+            ..mixed
+        },
+        _ => whole,
+    };
+    kept.solve.iterations = spent;
+    Ok(kept)
+}
+
+/// The hexagons of `cover` (capped, its vertices at `vertices`) to take off its pattern next,
+/// aiming at `aim` times the floors: those whose worst quad is above `aim` times the worst
+/// asked, then, while the quads' mean would stay above `aim` times the mean asked, those whose
+/// own flattest diagonal would gain most (its quads' planarity against the pattern's, both on
+/// the capped vertices, a guess at what the next capping makes of them). Never more than
+/// `MAX_OFF_PATTERN` of the hexagons in all, and none where the first alone are more. The
+/// diagonals are chosen on the honeycomb `base` as it stood, as a flattest cover's.
+fn cells_to_take_off(
+    (cover, vertices): (&QuadCover, &[Vec3]),
+    base: &PolyMesh,
+    conn: &Connectivity,
+    aim: f64,
+) -> Vec<usize> {
+    let hexagons: Vec<usize> = (0..base.faces.len())
+        .filter(|&f| cover.cell_quads[f].is_some())
+        .collect();
+    let own = cover.resplit(base, conn, &hexagons);
+    let planarity = |c: &QuadCover, f: usize| {
+        let quads = c.cell_quads[f].expect("a hexagon is split");
+        quads.map(|q| quad_planarity(c.corners(vertices, q)))
+    };
+    let room = ((MAX_OFF_PATTERN * hexagons.len() as f64) as usize)
+        .saturating_sub(cover.off_pattern.len());
+    // Cells whose own diagonal is another than the pattern's, with their two quads now and
+    // on it.
+    let candidates: Vec<(usize, [f64; 2], [f64; 2])> = (own.off_pattern.iter())
+        .filter(|f| cover.off_pattern.binary_search(f).is_err())
+        .map(|&f| (f, planarity(cover, f), planarity(&own, f)))
+        .collect();
+    let worst = |q: [f64; 2]| q[0].max(q[1]);
+    let (mut taken, mut rest): (Vec<_>, Vec<_>) =
+        (candidates.into_iter()).partition(|c| worst(c.1) > aim * FLAT_QUAD);
+    // The worst quad cannot come down within the share: no cells are worth taking off.
+    if taken.len() > room {
+        return Vec::new();
+    }
+    let quads = cover.quads.len().max(1) as f64;
+    let mut sum: f64 = (0..cover.quads.len())
+        .map(|q| quad_planarity(cover.corners(vertices, q)))
+        .sum();
+    let gain = |c: &(usize, [f64; 2], [f64; 2])| c.1[0] + c.1[1] - c.2[0] - c.2[1];
+    sum -= taken.iter().map(gain).sum::<f64>();
+    rest.sort_by(|a, b| gain(b).total_cmp(&gain(a)));
+    for c in rest {
+        if sum / quads <= aim * FLAT_QUAD_MEAN || gain(&c) <= 0.0 {
+            break;
+        }
+        sum -= gain(&c);
+        taken.push(c);
+    }
+    // The least planar first, where there is no room for all.
+    taken.sort_by(|a, b| worst(b.1).total_cmp(&worst(a.1)));
+    taken.truncate(room);
+    taken.into_iter().map(|c| c.0).collect()
 }
 
 /// [`cap`] of the honeycomb, its connectivity and its wall normals, with these tries in turn,
@@ -260,6 +398,7 @@ pub(crate) fn cap(
 fn cap_trying(
     (tries, even): (&[CappingTry], f64),
     (honeycomb, conn, normals): (&Honeycomb, &Connectivity, &[Vec3]),
+    cover: &QuadCover,
     surface: &PolyMesh,
     options: &QuadOptions,
     solver: &SolverOptions,
@@ -321,7 +460,7 @@ fn cap_trying(
             &normalized,
             conn,
             (normals, axes, depth),
-            &surface,
+            (&surface, cover.clone()),
             options,
             this,
         );
@@ -396,8 +535,9 @@ fn cap_trying(
             let vertices = if clean { vertices } else { normalized.vertices };
             return Ok(Capped {
                 vertices: vertices.into_iter().map(|p| frame.to_model(p)).collect(),
-                cover,
+                cover: cover.clone(),
                 solve,
+                whole: None,
             });
         }
     }
@@ -419,11 +559,10 @@ impl<'a> CappingProblem<'a> {
         normalized: &PolyMesh,
         conn: &Connectivity,
         (normals, axes, depth): (&[Vec3], &[Vec3], f64),
-        surface: &'a Surface,
+        (surface, cover): (&'a Surface, QuadCover),
         options: &QuadOptions,
         this: CappingTry,
     ) -> CappingProblem<'a> {
-        let cover = QuadCover::new(normalized, conn, options.pattern, options.direction);
         let layout = Layout::new(normalized.vertices.len(), 0);
         let mut x: Vec<f64> = normalized
             .vertices
@@ -564,6 +703,7 @@ mod tests {
         };
         let options = QuadOptions::default();
         let walls = (&honeycomb, &conn, normals.as_slice());
+        let cover = QuadCover::new(&honeycomb.base, &conn, options.pattern, None);
         let capped = cap_trying(
             (
                 &[
@@ -579,6 +719,7 @@ mod tests {
                 EVEN_CELLS,
             ),
             walls,
+            &cover,
             surface.source_mesh(),
             &options,
             &solver,
@@ -602,6 +743,43 @@ mod tests {
             "{} -> {}",
             before.delta_face_avg,
             after.delta_face_avg
+        );
+    }
+
+    /// The cells taken off a pattern: none where its quads are far inside the floors aimed at,
+    /// nor where more than a fifth of the hexagons are past them; else those past them, the
+    /// least planar first, and more for the mean, never more than a fifth in all.
+    #[test]
+    fn at_most_a_fifth_of_the_cells_leave_the_pattern() {
+        let (_, honeycomb, conn) =
+            crate::tests::default_honeycomb(crate::generate::Shape::Wave, 300);
+        let base = &honeycomb.base;
+        let cover = QuadCover::new(base, &conn, QuadPattern::Zigzag, None);
+        let capped = (&cover, base.vertices.as_slice());
+        assert!(cells_to_take_off(capped, base, &conn, 1e3).is_empty());
+        assert!(cells_to_take_off(capped, base, &conn, 0.0).is_empty());
+        let worst = |f: usize| {
+            (cover.cell_quads[f].unwrap().iter())
+                .map(|&q| quad_planarity(cover.corners(&base.vertices, q)))
+                .fold(0.0, f64::max)
+        };
+        // Aimed so that a tenth of the cells whose own diagonal is another are past it.
+        let own = cover.resplit(base, &conn, &(0..base.faces.len()).collect::<Vec<_>>());
+        let mut worsts: Vec<f64> = own.off_pattern.iter().map(|&f| worst(f)).collect();
+        worsts.sort_by(|a, b| b.total_cmp(a));
+        let hexagons = cover.cell_quads.iter().flatten().count();
+        let aim = worsts[hexagons / 10] / FLAT_QUAD;
+        let taken = cells_to_take_off(capped, base, &conn, aim);
+        assert!(taken.len() <= hexagons / 5, "{} of {hexagons}", taken.len());
+        let past = (own.off_pattern.iter()).filter(|&&f| worst(f) > aim * FLAT_QUAD);
+        assert!(past.clone().count() >= 1);
+        for f in past {
+            assert!(taken.contains(f), "cell {f}");
+        }
+        assert!(taken.windows(2).all(|w| worst(w[0]) >= worst(w[1])));
+        assert_eq!(
+            cover.resplit(base, &conn, &taken).off_pattern.len(),
+            taken.len()
         );
     }
 

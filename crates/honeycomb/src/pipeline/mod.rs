@@ -1305,6 +1305,7 @@ fn across_optimized(
         parallel: false,
         quads: None,
         quad_cover: None,
+        quads_whole_pattern: None,
         weights: options.weights.resolved(WallNormals::CellPoints),
         wall_normals: WallNormals::CellPoints,
     }
