@@ -181,7 +181,8 @@ def optimize(
     the base mesh itself). ``options`` as for :func:`pipeline`, and ``variant``, e.g.
     ``variant={"kind": "parallel", "depth": 0.2}`` or ``{"kind": "quads", "pattern":
     "zigzag"}`` (with ``"quads_reshape": 0.3``, the cells may re-shape up to that edge-length
-    cv for flatter quads)."""
+    cv for flatter quads; with ``"quads_whole_pattern": True``, no cell leaves the pattern for
+    flatter quads)."""
 
 def read(dir: Union[str, "os.PathLike[str]"], surface: Optional[MeshLike] = None) -> Result:
     """Reads a structure directory (``save``'s, or the CLI's ``optimize`` or ``pipeline``) and
