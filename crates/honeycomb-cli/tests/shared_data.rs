@@ -399,6 +399,17 @@ fn the_cells_reshaped_on_request_meet_the_quad_floors() {
     }
 }
 
+/// `pipeline ROOF --cells 750 --quads zigzag`'s report, checked as [`assert_capped_evenly`];
+/// `None` where the shared data is absent.
+fn zigzag_capped_evenly(roof: &str) -> Option<serde_json::Value> {
+    let args = ["--cells", "750", "--quads", "zigzag", "-q"];
+    let r = run_shared("pipeline", roof, &args)?;
+    assert!(r.output.status.success(), "{}", stderr(&r.output));
+    let report = r.report.expect("a report");
+    assert_capped_evenly(&report, roof);
+    Some(report)
+}
+
 /// On the train station, where S twists along a zigzag cover's diagonals, the quads are flat
 /// only where cells stretch along their walls (edges of several mean lengths, an edge cv near
 /// 1): the capping keeps the cells even, its quads stay short of the floors and the report
@@ -406,13 +417,9 @@ fn the_cells_reshaped_on_request_meet_the_quad_floors() {
 #[test]
 fn a_capping_keeps_the_cells_even_where_flat_quads_would_stretch_them() {
     for roof in ["train-station.off", "free_negshell_marc_anet.obj"] {
-        let args = ["--cells", "750", "--quads", "zigzag", "-q"];
-        let Some(r) = run_shared("pipeline", roof, &args) else {
+        let Some(report) = zigzag_capped_evenly(roof) else {
             return;
         };
-        assert!(r.output.status.success(), "{}", stderr(&r.output));
-        let report = r.report.expect("a report");
-        assert_capped_evenly(&report, roof);
         assert!(number(&report, "delta_face_max") > 0.01, "{report}");
         assert!(
             report["notes"].to_string().contains("--quads flattest"),
@@ -428,13 +435,9 @@ fn a_capping_keeps_the_cells_even_where_flat_quads_would_stretch_them() {
 #[test]
 fn a_zigzag_cover_meets_the_quad_floors_with_a_few_cells_off_it() {
     for roof in ["Neumunster.ply", "inspired_mesh.obj"] {
-        let args = ["--cells", "750", "--quads", "zigzag", "-q"];
-        let Some(r) = run_shared("pipeline", roof, &args) else {
+        let Some(report) = zigzag_capped_evenly(roof) else {
             return;
         };
-        assert!(r.output.status.success(), "{}", stderr(&r.output));
-        let report = r.report.expect("a report");
-        assert_capped_evenly(&report, roof);
         let capping = &report["capping"];
         assert!(number(capping, "iterations") <= 20.0, "{roof}: {capping}");
         assert!(
