@@ -247,8 +247,8 @@ pub struct Optimized {
     pub quads: Option<PolyMesh>,
     /// With quads: how the cells were split (the quads to measure, the polylines).
     pub quad_cover: Option<crate::structure::QuadCover>,
-    /// With quads whose pattern stayed short of the floors and might be broken: its quads'
-    /// planarity as the pattern whole left them (see `QuadCover::off_pattern`).
+    /// With quads some of whose cells left the pattern (`QuadCover::off_pattern`): the quads'
+    /// planarity as the pattern whole left them.
     pub quads_whole_pattern: Option<crate::structure::FaceMeasures>,
     /// The weights the solve used (normalization set; boundary 0 without a design surface).
     pub weights: Weights,
