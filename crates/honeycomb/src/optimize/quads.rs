@@ -178,6 +178,9 @@ const MAX_OFF_PATTERN: f64 = 0.2;
 /// A step that changes the quads' largest and mean planarity by less than this has left them
 /// as they are to the digits that delta_face is read to: the capping has settled.
 const SETTLED_PLANARITY: f64 = 1e-5;
+/// Where cells may leave the pattern after it, the pattern whole's capping settles at this
+/// instead: the cappings with cells off it need the budget more than it needs its last digits.
+const SETTLED_BEFORE_CELLS_OFF: f64 = 5e-5;
 
 /// Every edge stays at least this long (mean edge lengths): a quad with a vanishing side is
 /// a triangle, so planarity pulls at short edges, and where the axes at an edge's ends lean
@@ -258,7 +261,7 @@ pub(crate) fn cap(
     let cover = QuadCover::new(base, conn, options.pattern, options.direction);
     let cover = cover.resplit(base, conn, &held.cover.off_pattern);
     let sliding = cap_trying(
-        (&[SLIDING_TRY], reshape),
+        (&[SLIDING_TRY], reshape, SETTLED_PLANARITY),
         walls,
         &cover,
         surface,
@@ -295,11 +298,24 @@ fn held_with_cells_off(
     progress: &mut dyn FnMut(&IterationInfo),
 ) -> Result<Capped> {
     let (honeycomb, conn, _) = walls;
-    let tries = (&HELD_TRIES[..], EVEN_CELLS);
-    let whole = cap_trying(tries, walls, cover, surface, options, solver, progress)?;
+    let may_break = options.pattern != QuadPattern::Flattest && !options.whole_pattern;
+    let settled = if may_break {
+        SETTLED_BEFORE_CELLS_OFF
+    } else {
+        SETTLED_PLANARITY
+    };
+    let whole_tries = (&HELD_TRIES[..], EVEN_CELLS, settled);
+    let whole = cap_trying(
+        whole_tries,
+        walls,
+        cover,
+        surface,
+        options,
+        solver,
+        progress,
+    )?;
     let mut spent = whole.solve.iterations;
     let flat = face_measures(&whole.vertices, &whole.cover.quads);
-    let may_break = options.pattern != QuadPattern::Flattest && !options.whole_pattern;
     if !may_break || flat.meet_floors() {
         return Ok(whole);
     }
@@ -318,6 +334,7 @@ fn held_with_cells_off(
             max_iterations: solver.max_iterations - spent,
             ..solver.clone()
         };
+        let tries = (&HELD_TRIES[..], EVEN_CELLS, SETTLED_PLANARITY);
         let next = cap_trying(tries, walls, &cover, surface, options, &left, progress)?;
         spent += next.solve.iterations;
         let meets = face_measures(&next.vertices, &next.cover.quads).meet_floors();
@@ -394,9 +411,10 @@ fn cells_to_take_off(
 }
 
 /// [`cap`] of the honeycomb, its connectivity and its wall normals, with these tries in turn,
-/// each clean only if its cells are at most as uneven as `even` (edge-length cv) allows.
+/// each clean only if its cells are at most as uneven as `even` (edge-length cv) allows, and
+/// settled once a step changes the quads' planarity by less than `settled`.
 fn cap_trying(
-    (tries, even): (&[CappingTry], f64),
+    (tries, even, settled): (&[CappingTry], f64, f64),
     (honeycomb, conn, normals): (&Honeycomb, &Connectivity, &[Vec3]),
     cover: &QuadCover,
     surface: &PolyMesh,
@@ -509,7 +527,7 @@ fn cap_trying(
                     }
                 }
             }
-            if (0..2).all(|k| (after[k] - before[k]).abs() < SETTLED_PLANARITY) {
+            if (0..2).all(|k| (after[k] - before[k]).abs() < settled) {
                 break;
             }
             before = after;
@@ -717,6 +735,7 @@ mod tests {
                     },
                 ],
                 EVEN_CELLS,
+                SETTLED_PLANARITY,
             ),
             walls,
             &cover,
