@@ -115,6 +115,15 @@ def test_flattest_quads_on_a_boundary_grid_beat_the_zigzag_there(surface):
     assert flattest["closeness_max"] <= 0.1
 
 
+def test_a_quad_pattern_kept_whole_takes_no_cell_off_it(surface):
+    # The report counts the cells taken off the pattern; kept whole, there are none.
+    variant = {"kind": "quads", "pattern": "zigzag", "quads_whole_pattern": True}
+    out = honeycomb.pipeline(surface, cells=CELLS, variant=variant, align="boundary")
+    assert out.is_honeycomb, out.why
+    assert out.report["capping"]["cells_off_pattern"] == 0
+    assert "whole_pattern" not in out.report["capping"]
+
+
 def test_lists_paths_and_arrays_give_the_same_result(surface, result, tmp_path):
     vertices, faces = surface
     as_lists = honeycomb.pipeline((vertices.tolist(), faces.tolist()), cells=CELLS)
@@ -159,6 +168,7 @@ def test_optimize_on_its_own_base(result):
         ("boundary", "fold", "boundary"),
         ("align", "no/such/strokes.txt", "align"),
         ("variant", {"kind": "quads", "pattern": "zigzag", "quads_reshape": -1.0}, "quads.reshape"),
+        ("variant", {"kind": "quads", "pattern": "zigzag", "quads_whole_patern": True}, "quads_whole_patern"),
     ],
 )
 def test_a_bad_option_raises_value_error_naming_it(surface, option, value, named):
