@@ -319,7 +319,8 @@ fn held_with_cells_off(
     if !may_break || flat.meet_floors() {
         return Ok(whole);
     }
-    let mut last: Option<Capped> = None;
+    // The last capping with cells off, which the next round adds to, and the one that met.
+    let (mut last, mut met): (Option<Capped>, Option<Capped>) = (None, None);
     for aim in OFF_PATTERN_AIMS {
         if spent >= solver.max_iterations {
             break;
@@ -337,18 +338,18 @@ fn held_with_cells_off(
         let tries = (&HELD_TRIES[..], EVEN_CELLS, SETTLED_PLANARITY);
         let next = cap_trying(tries, walls, &cover, surface, options, &left, progress)?;
         spent += next.solve.iterations;
-        let meets = face_measures(&next.vertices, &next.cover.quads).meet_floors();
-        last = Some(next);
-        if meets {
+        if face_measures(&next.vertices, &next.cover.quads).meet_floors() {
+            met = Some(next);
             break;
         }
+        last = Some(next);
     }
-    let mut kept = match last {
-        Some(mixed) if face_measures(&mixed.vertices, &mixed.cover.quads).meet_floors() => Capped {
+    let mut kept = match met {
+        Some(mixed) => Capped {
             whole: Some(flat),
             ..mixed
         },
-        _ => whole,
+        None => whole,
     };
     kept.solve.iterations = spent;
     Ok(kept)
