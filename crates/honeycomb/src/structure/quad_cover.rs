@@ -579,16 +579,23 @@ mod tests {
         Connectivity::build(&m).unwrap();
     }
 
-    /// On a surface that twists along different lattice directions in different places (here
-    /// `z = sin x cos y / 5`, whose principal directions turn), a flattest cover splits each
-    /// hexagon along the long diagonal whose two quads are flattest, whichever class that is.
-    #[test]
-    fn a_flattest_cover_splits_each_cell_where_its_quads_are_flattest() {
+    /// A hex disk lifted onto `z = sin x cos y / 5`, whose principal directions turn: it twists
+    /// along different lattice directions in different places.
+    fn twisted_disk() -> (PolyMesh, Connectivity) {
         let mut mesh = hex_disk(6.0);
         for p in &mut mesh.vertices {
             p.z = (p.x.sin() * p.y.cos()) / 5.0;
         }
         let conn = Connectivity::build(&mesh).unwrap();
+        (mesh, conn)
+    }
+
+    /// On a surface that twists along different lattice directions in different places (here
+    /// `z = sin x cos y / 5`, whose principal directions turn), a flattest cover splits each
+    /// hexagon along the long diagonal whose two quads are flattest, whichever class that is.
+    #[test]
+    fn a_flattest_cover_splits_each_cell_where_its_quads_are_flattest() {
+        let (mesh, conn) = twisted_disk();
         let c = QuadCover::new(&mesh, &conn, QuadPattern::Flattest, None);
         let mut classes = std::collections::HashSet::new();
         for (f, face) in mesh.faces.iter().enumerate() {
@@ -613,11 +620,7 @@ mod tests {
     /// zigzag's, and taking more cells off later keeps the first ones off.
     #[test]
     fn cells_taken_off_the_pattern_take_their_flattest_diagonal() {
-        let mut mesh = hex_disk(6.0);
-        for p in &mut mesh.vertices {
-            p.z = (p.x.sin() * p.y.cos()) / 5.0;
-        }
-        let conn = Connectivity::build(&mesh).unwrap();
+        let (mesh, conn) = twisted_disk();
         let zigzag = QuadCover::new(&mesh, &conn, QuadPattern::Zigzag, None);
         let flattest = QuadCover::new(&mesh, &conn, QuadPattern::Flattest, None);
         assert!(zigzag.off_pattern.is_empty() && flattest.off_pattern.is_empty());
