@@ -18,8 +18,8 @@ use crate::solve::{
     Constraint, GuidedProjection, IterationInfo, Role, SolveReport, SolveState, SolverOptions,
 };
 use crate::structure::{
-    edge_length_cv, face_measures, is_convex, meet_quad_floors, quad_planarity, FaceMeasures,
-    Honeycomb, QuadCover, FLAT_QUAD, FLAT_QUAD_MEAN,
+    edge_length_cv, face_measures, is_convex, meet_quad_floors, quad_planarities, quad_planarity,
+    FaceMeasures, Honeycomb, QuadCover, FLAT_QUAD, FLAT_QUAD_MEAN,
 };
 use crate::surface::Surface;
 
@@ -392,9 +392,7 @@ fn cells_to_take_off(
         return Vec::new();
     }
     let quads = cover.quads.len().max(1) as f64;
-    let mut sum: f64 = (0..cover.quads.len())
-        .map(|q| quad_planarity(cover.corners(vertices, q)))
-        .sum();
+    let mut sum: f64 = quad_planarities(vertices, &cover.quads).iter().sum();
     let gain = |c: &(usize, [f64; 2], [f64; 2])| c.1[0] + c.1[1] - c.2[0] - c.2[1];
     sum -= taken.iter().map(gain).sum::<f64>();
     rest.sort_by(|a, b| gain(b).total_cmp(&gain(a)));

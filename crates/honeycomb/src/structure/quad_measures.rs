@@ -25,12 +25,6 @@ impl FaceMeasures {
     pub fn meet_floors(&self) -> bool {
         meet_quad_floors(self.delta_face_max, self.delta_face_avg)
     }
-
-    /// How far these quads are from the floors, as the larger of the worst and the mean over
-    /// their floors: at most 1 where both are met.
-    pub fn floor_ratio(&self) -> f64 {
-        (self.delta_face_max / FLAT_QUAD).max(self.delta_face_avg / FLAT_QUAD_MEAN)
-    }
 }
 
 /// Whether quads whose worst and mean planarity are `max` and `avg` meet both floors a glazed
